@@ -1,0 +1,205 @@
+//! 256 × 256 rasterisation over a room window: floor plans, box footprints, capsule footprints.
+//!
+//! A pixel is set when its centre lies inside the shape. Row 0 is the window's top (largest y), so a
+//! mask saved as an image shows the room with +y up. Only pixels inside a shape's bounding window are
+//! visited, so a footprint costs its own area, not the whole grid.
+
+use super::{OBox, Polygon, point_segment_distance};
+use crate::scene::RoomType;
+use glam::DVec2;
+use std::ops::Range;
+
+/// Resolution of every mask (pixels per side).
+pub const RES: usize = 256;
+
+/// The square region of the floor that conditioning and metrics rasterise.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RoomWindow {
+    /// Centre of the window in world coordinates.
+    pub center: DVec2,
+    /// Side length in metres.
+    pub side: f64,
+}
+
+impl RoomWindow {
+    /// The window of a room: the room type's side, centred on the floor plan's bounding-box centre.
+    pub fn for_room(room: RoomType, floor: &Polygon) -> RoomWindow {
+        let (min, max) = floor.bounds();
+        RoomWindow { center: (min + max) * 0.5, side: room.window_side() }
+    }
+
+    /// Side of one pixel in metres.
+    pub fn pixel(&self) -> f64 {
+        self.side / RES as f64
+    }
+
+    /// Area of one pixel in m².
+    pub fn pixel_area(&self) -> f64 {
+        self.pixel() * self.pixel()
+    }
+
+    /// World position of the centre of pixel (column `i`, row `j`).
+    pub fn pixel_center(&self, i: usize, j: usize) -> DVec2 {
+        let px = self.pixel();
+        let half = self.side * 0.5;
+        DVec2::new(self.center.x - half + (i as f64 + 0.5) * px, self.center.y + half - (j as f64 + 0.5) * px)
+    }
+
+    /// (column, row) ranges of the pixels whose centres may lie in the world box `min`..`max`.
+    pub fn pixel_ranges(&self, min: DVec2, max: DVec2) -> (Range<usize>, Range<usize>) {
+        let px = self.pixel();
+        let half = self.side * 0.5;
+        let col = |x: f64| ((x - (self.center.x - half)) / px - 0.5).clamp(-1.0, RES as f64);
+        let row = |y: f64| (((self.center.y + half) - y) / px - 0.5).clamp(-1.0, RES as f64);
+        let i0 = col(min.x).ceil().max(0.0) as usize;
+        let i1 = (col(max.x).floor() + 1.0).clamp(0.0, RES as f64) as usize;
+        let j0 = row(max.y).ceil().max(0.0) as usize;
+        let j1 = (row(min.y).floor() + 1.0).clamp(0.0, RES as f64) as usize;
+        (i0..i1.max(i0), j0..j1.max(j0))
+    }
+}
+
+/// A 256 × 256 binary mask, row-major from the top row.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Mask {
+    bits: Vec<bool>,
+}
+
+impl Default for Mask {
+    fn default() -> Mask {
+        Mask::new()
+    }
+}
+
+impl Mask {
+    /// An empty mask.
+    pub fn new() -> Mask {
+        Mask { bits: vec![false; RES * RES] }
+    }
+
+    /// Whether pixel (column `i`, row `j`) is set.
+    pub fn get(&self, i: usize, j: usize) -> bool {
+        self.bits[j * RES + i]
+    }
+
+    /// Sets pixel (column `i`, row `j`).
+    pub fn set(&mut self, i: usize, j: usize) {
+        self.bits[j * RES + i] = true;
+    }
+
+    /// Number of set pixels.
+    pub fn count(&self) -> usize {
+        self.bits.iter().filter(|&&b| b).count()
+    }
+
+    /// Number of pixels set in both masks.
+    pub fn overlap(&self, other: &Mask) -> usize {
+        self.bits.iter().zip(&other.bits).filter(|&(&a, &b)| a && b).count()
+    }
+
+    /// The complement.
+    pub fn inverted(&self) -> Mask {
+        Mask { bits: self.bits.iter().map(|b| !b).collect() }
+    }
+
+    /// Rows, top first, as slices of pixels.
+    pub fn rows(&self) -> impl Iterator<Item = &[bool]> {
+        self.bits.chunks(RES)
+    }
+
+    /// Sets every pixel whose centre is inside `polygon` (scanline, even–odd).
+    pub fn fill_polygon(&mut self, window: &RoomWindow, polygon: &Polygon) {
+        let mut xs = Vec::new();
+        for j in 0..RES {
+            let y = window.pixel_center(0, j).y;
+            xs.clear();
+            for (a, b) in polygon.edges() {
+                if (a.y > y) != (b.y > y) {
+                    xs.push(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
+                }
+            }
+            xs.sort_by(f64::total_cmp);
+            for pair in xs.chunks_exact(2) {
+                let (cols, _) = window.pixel_ranges(DVec2::new(pair[0], y), DVec2::new(pair[1], y));
+                for i in cols {
+                    let x = window.pixel_center(i, j).x;
+                    if x > pair[0] && x < pair[1] {
+                        self.set(i, j);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Sets every pixel whose centre is inside the footprint of `b`.
+    pub fn fill_footprint(&mut self, window: &RoomWindow, b: &OBox) {
+        let (min, max) = b.footprint_aabb();
+        let (cols, rows) = window.pixel_ranges(min, max);
+        for j in rows {
+            for i in cols.clone() {
+                if b.footprint_contains(window.pixel_center(i, j)) {
+                    self.set(i, j);
+                }
+            }
+        }
+    }
+
+    /// Sets every pixel whose centre is within `radius` of the segment `a`–`b` (a capsule's shadow).
+    pub fn fill_capsule(&mut self, window: &RoomWindow, a: DVec2, b: DVec2, radius: f64) {
+        let (cols, rows) = window.pixel_ranges(a.min(b) - radius, a.max(b) + radius);
+        for j in rows {
+            for i in cols.clone() {
+                if point_segment_distance(window.pixel_center(i, j), a, b) <= radius {
+                    self.set(i, j);
+                }
+            }
+        }
+    }
+
+    /// A mask of `polygon`.
+    pub fn of_polygon(window: &RoomWindow, polygon: &Polygon) -> Mask {
+        let mut m = Mask::new();
+        m.fill_polygon(window, polygon);
+        m
+    }
+
+    /// A mask of one box footprint.
+    pub fn of_footprint(window: &RoomWindow, b: &OBox) -> Mask {
+        let mut m = Mask::new();
+        m.fill_footprint(window, b);
+        m
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    fn window() -> RoomWindow {
+        RoomWindow { center: DVec2::ZERO, side: 6.4 }
+    }
+
+    #[test]
+    fn pixel_centres_and_ranges_agree() {
+        let w = window();
+        assert_eq!(w.pixel(), 0.025);
+        assert_eq!(w.pixel_center(0, 0), DVec2::new(-3.1875, 3.1875));
+        let (c, r) = w.pixel_ranges(DVec2::new(-3.2, -3.2), DVec2::new(3.2, 3.2));
+        assert_eq!((c, r), (0..256, 0..256));
+        let (c, r) = w.pixel_ranges(DVec2::new(0.0, 0.0), DVec2::new(0.05, 0.05));
+        assert_eq!((c.len(), r.len()), (2, 2));
+        let (c, _) = w.pixel_ranges(DVec2::new(10.0, 0.0), DVec2::new(11.0, 0.0));
+        assert!(c.is_empty());
+    }
+
+    #[test]
+    fn square_covers_its_pixels_exactly() {
+        // A 1 m square aligned with the grid covers exactly 40 × 40 pixels.
+        let w = window();
+        let sq = Polygon::rectangle(DVec2::ZERO, DVec2::ONE);
+        assert_eq!(Mask::of_polygon(&w, &sq).count(), 1600);
+        let b = OBox::new(DVec3::new(0.5, 0.5, 0.0), DVec3::ONE, 0.0);
+        assert_eq!(Mask::of_footprint(&w, &b), Mask::of_polygon(&w, &sq));
+    }
+}

@@ -1,0 +1,239 @@
+//! Conditioning extracted from a scene's humans (after MIME): the free-space mask, contact boxes
+//! and floor-plan points.
+//!
+//! - Free space: every frame labelled walk or stand draws both feet (the ankle–toe capsule's
+//!   shadow) into a 256² mask over the room window. Unlabelled frames are ignored.
+//! - Contact boxes: one oriented box per contact span, yawed like the body (from the hip line).
+//!   For sit and lie the box is the *support volume*: the footprint of the resting parts (pelvis and
+//!   thighs; the whole body) and the 10 cm just below their lowest surface, where a seat or mattress
+//!   must be. For touch it is a 12 cm cube centred on the palm, half of which lies inside a touched
+//!   surface. So a well-supported human has contact IoU ≈ 1 (sit, lie) or ≈ 0.5 (touch).
+//! - Floor plan: points on the boundary with outward normals, then interior grid points, relative
+//!   to the window centre, in a fixed count for a PointNet.
+//!
+//! Works on any skeleton that has the required joint names; it does not look at objects.
+
+use crate::geom::{Mask, OBox, RoomWindow};
+use crate::scene::{Action, ActionSpan, Human, Scene, Skeleton};
+use glam::{DVec2, DVec3};
+use serde::{Deserialize, Serialize};
+
+/// Depth of the support volume under a sitting or lying body (m).
+pub const SUPPORT_DEPTH: f64 = 0.10;
+/// Side of the cube around a touching palm (m).
+pub const TOUCH_SIDE: f64 = 0.12;
+/// Palm distance past the wrist as a fraction of the forearm (0.054 H / 0.146 H).
+const HAND_PER_FOREARM: f64 = 0.37;
+/// Frames looked at per span (evenly spread): enough for slow motions, cheap for long ones.
+const FRAMES_PER_SPAN: usize = 32;
+
+/// A region that must be supported or touched by furniture.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ContactBox {
+    /// Id of the human.
+    pub human: String,
+    /// The contact action (sit, lie or touch).
+    pub action: Action,
+    /// The frames `[start, end)` it covers.
+    pub frames: [usize; 2],
+    /// The box.
+    #[serde(rename = "box")]
+    pub obox: OBox,
+}
+
+/// A floor-plan point for a PointNet, relative to the room window's centre.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct FloorPoint {
+    /// Position relative to the window centre (m).
+    pub position: [f64; 2],
+    /// Outward normal for boundary points, zero for interior points.
+    pub normal: [f64; 2],
+}
+
+/// Everything the generator is conditioned on.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Conditions {
+    /// The rasterised room window.
+    pub window: RoomWindow,
+    /// Floor under walking and standing feet.
+    pub free_space: Mask,
+    /// The floor plan.
+    pub floor: Mask,
+    /// Contact boxes of all humans, in human then span order.
+    pub contact_boxes: Vec<ContactBox>,
+    /// Floor-plan points (boundary first).
+    pub floor_points: Vec<FloorPoint>,
+}
+
+impl Conditions {
+    /// Boundary and interior floor points used by [`Conditions::of`].
+    pub const FLOOR_POINTS: (usize, usize) = (128, 128);
+
+    /// Conditioning of a (validated) scene.
+    pub fn of(scene: &Scene) -> Conditions {
+        let polygon = scene.floor_plan.polygon();
+        let window = RoomWindow::for_room(scene.room_type, &polygon);
+        let (nb, ni) = Self::FLOOR_POINTS;
+        Conditions {
+            window,
+            free_space: free_space_mask(scene, &window),
+            floor: Mask::of_polygon(&window, &polygon),
+            contact_boxes: scene.humans.iter().flat_map(contact_boxes).collect(),
+            floor_points: floor_points(&polygon, &window, nb, ni),
+        }
+    }
+}
+
+/// The feet of all walking and standing frames of all humans.
+pub fn free_space_mask(scene: &Scene, window: &RoomWindow) -> Mask {
+    let mut mask = Mask::new();
+    for human in &scene.humans {
+        let feet = feet(&human.skeleton);
+        for f in human.free_space_frames() {
+            for &(ankle, toe, radius) in &feet {
+                let (a, t) = (human.joint_at(f, ankle).truncate(), human.joint_at(f, toe).truncate());
+                mask.fill_capsule(window, a, t, radius);
+            }
+        }
+    }
+    mask
+}
+
+/// (ankle, toe, radius) of both feet.
+fn feet(skeleton: &Skeleton) -> Vec<(usize, usize, f64)> {
+    ["left", "right"]
+        .iter()
+        .filter_map(|side| {
+            let ankle = skeleton.joint(&format!("{side}_ankle"))?;
+            let toe = skeleton.joint(&format!("{side}_toe"))?;
+            Some((ankle, toe, radius_between(skeleton, &[ankle, toe]).unwrap_or(0.04)))
+        })
+        .collect()
+}
+
+/// Largest radius of a bone with both ends in `joints`.
+fn radius_between(skeleton: &Skeleton, joints: &[usize]) -> Option<f64> {
+    skeleton
+        .bones
+        .iter()
+        .filter(|b| joints.contains(&b.a) && joints.contains(&b.b))
+        .map(|b| b.radius)
+        .reduce(f64::max)
+}
+
+/// Largest radius of a bone touching joint `j`.
+fn radius_at(skeleton: &Skeleton, j: usize) -> f64 {
+    skeleton.bones.iter().filter(|b| b.a == j || b.b == j).map(|b| b.radius).fold(0.0, f64::max)
+}
+
+/// The contact boxes of one human, one per contact span.
+pub fn contact_boxes(human: &Human) -> Vec<ContactBox> {
+    human.contact_spans().filter_map(|span| contact_box(human, span)).collect()
+}
+
+fn span_frames(span: &ActionSpan) -> impl Iterator<Item = usize> {
+    let n = span.end - span.start;
+    let k = n.min(FRAMES_PER_SPAN);
+    (0..k).map(move |i| span.start + i * n / k)
+}
+
+/// Yaw of the body in frame `f`, from the hip line (0 when facing +y).
+pub fn body_yaw(human: &Human, f: usize) -> f64 {
+    let s = &human.skeleton;
+    let (Some(l), Some(r)) = (s.joint("left_hip"), s.joint("right_hip")) else { return 0.0 };
+    let right = (human.joint_at(f, r) - human.joint_at(f, l)).truncate();
+    let facing = DVec2::new(-right.y, right.x).normalize_or(DVec2::Y);
+    (-facing.x).atan2(facing.y)
+}
+
+fn contact_box(human: &Human, span: &ActionSpan) -> Option<ContactBox> {
+    let s = &human.skeleton;
+    let yaw = body_yaw(human, (span.start + span.end) / 2);
+    let obox = match span.action {
+        Action::Sit => {
+            let names = ["pelvis", "left_hip", "right_hip", "left_knee", "right_knee"];
+            let joints: Vec<usize> = names.iter().filter_map(|n| s.joint(n)).collect();
+            let r = radius_between(s, &joints).unwrap_or(0.07);
+            support_box(human, span, &joints.iter().map(|&j| (j, r)).collect::<Vec<_>>(), yaw)
+        }
+        Action::Lie => {
+            let parts: Vec<(usize, f64)> = (0..s.joints.len()).map(|j| (j, radius_at(s, j))).collect();
+            support_box(human, span, &parts, yaw)
+        }
+        Action::Touch => {
+            let palm = touching_palm(human, span)?;
+            OBox::new(palm, DVec3::splat(TOUCH_SIDE), yaw)
+        }
+        Action::Walk | Action::Stand => return None,
+    };
+    Some(ContactBox { human: human.id.clone(), action: span.action, frames: [span.start, span.end], obox })
+}
+
+/// The support volume under the listed (joint, radius) parts over the span's frames.
+fn support_box(human: &Human, span: &ActionSpan, parts: &[(usize, f64)], yaw: f64) -> OBox {
+    let (sn, cs) = yaw.sin_cos();
+    let to_local = |p: DVec2| DVec2::new(cs * p.x + sn * p.y, -sn * p.x + cs * p.y);
+    let mut lo = DVec2::splat(f64::INFINITY);
+    let mut hi = DVec2::splat(f64::NEG_INFINITY);
+    let mut bottom = f64::INFINITY;
+    for f in span_frames(span) {
+        for &(j, r) in parts {
+            let p = human.joint_at(f, j);
+            let l = to_local(p.truncate());
+            lo = lo.min(l - r);
+            hi = hi.max(l + r);
+            bottom = bottom.min(p.z - r);
+        }
+    }
+    let mid = (lo + hi) * 0.5;
+    let center = DVec2::new(cs * mid.x - sn * mid.y, sn * mid.x + cs * mid.y);
+    let size = (hi - lo).extend(SUPPORT_DEPTH);
+    OBox::new(center.extend(bottom - SUPPORT_DEPTH * 0.5), size, yaw)
+}
+
+/// Mean palm position of the hand that reaches furthest forward during the span.
+fn touching_palm(human: &Human, span: &ActionSpan) -> Option<DVec3> {
+    let s = &human.skeleton;
+    let pelvis = s.joint("pelvis")?;
+    let mid = (span.start + span.end) / 2;
+    let yaw = body_yaw(human, mid);
+    let facing = DVec2::new(-yaw.sin(), yaw.cos());
+    let palm = |side: &str, f: usize| -> Option<DVec3> {
+        let e = human.joint_at(f, s.joint(&format!("{side}_elbow"))?);
+        let w = human.joint_at(f, s.joint(&format!("{side}_wrist"))?);
+        Some(w + (w - e) * HAND_PER_FOREARM)
+    };
+    let reach = |side: &str| -> Option<f64> {
+        let p = palm(side, mid)?;
+        Some((p - human.joint_at(mid, pelvis)).truncate().dot(facing))
+    };
+    let side = match (reach("left"), reach("right")) {
+        (Some(l), Some(r)) => if l > r { "left" } else { "right" },
+        (Some(_), None) => "left",
+        (None, Some(_)) => "right",
+        (None, None) => return None,
+    };
+    let frames: Vec<usize> = span_frames(span).collect();
+    let sum = frames.iter().filter_map(|&f| palm(side, f)).fold(DVec3::ZERO, |a, p| a + p);
+    Some(sum / frames.len() as f64)
+}
+
+/// `boundary` points along the floor-plan boundary (with outward normals) followed by `interior`
+/// points of an interior grid, relative to the window centre.
+pub fn floor_points(polygon: &crate::geom::Polygon, window: &RoomWindow, boundary: usize, interior: usize) -> Vec<FloorPoint> {
+    let c = window.center;
+    let mut out: Vec<FloorPoint> = polygon
+        .sample_boundary(boundary)
+        .into_iter()
+        .map(|b| FloorPoint { position: (b.point - c).to_array(), normal: b.normal.to_array() })
+        .collect();
+    let area = polygon.area().max(1e-6);
+    let grid = polygon.sample_interior((area / (interior as f64 * 2.0)).sqrt());
+    if !grid.is_empty() {
+        out.extend((0..interior).map(|i| {
+            let p = grid[i * grid.len() / interior];
+            FloorPoint { position: (p - c).to_array(), normal: [0.0, 0.0] }
+        }));
+    }
+    out
+}

@@ -1,0 +1,22 @@
+//! Human bodies: the default skeleton, poses (stand, walk, sit, lie, touch), motions, body-surface
+//! points and the conditioning the generator reads from humans.
+//!
+//! Bodies are capsules between named joints. Poses are geometric (inverse kinematics and gait
+//! rules), not simulated; physics replays them in `sim`.
+
+mod conditions;
+mod gait;
+mod motion;
+mod pose;
+mod skeleton;
+mod surface;
+
+pub use conditions::{
+    Conditions, ContactBox, FloorPoint, SUPPORT_DEPTH, TOUCH_SIDE, body_yaw, contact_boxes, floor_points,
+    free_space_mask,
+};
+pub use gait::Gait;
+pub use motion::Motion;
+pub use pose::{BODY_BONES, Pose, SEAT_BONES, lie, sit, stand, stand_local, touch, two_bone_ik};
+pub use skeleton::{Body, JOINT_NAMES, Joint, Side, round_mm};
+pub use surface::{SurfaceSampler, segment_distance_3d};

@@ -1,0 +1,12 @@
+//! shade-sim: furniture layouts for rooms in which given human motions can happen, proven physically.
+//!
+//! The crate reads and writes `shade-scene/1` files ([`scene`]), does exact box and polygon
+//! geometry and 256² rasterisation ([`geom`]), builds human bodies, poses and motions and extracts
+//! the conditioning a SHADE generator reads ([`human`]), and renders pictures ([`export`]).
+//! The command-line tool `shade-sim` is a thin layer over this library.
+#![warn(missing_docs)]
+
+pub mod export;
+pub mod geom;
+pub mod human;
+pub mod scene;

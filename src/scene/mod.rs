@@ -1,0 +1,24 @@
+//! The scene format `shade-scene/1`: types, JSON input/output and validation.
+//!
+//! A scene is plain data: a room type, a floor plan, furniture as oriented boxes and humans as
+//! self-describing skeletons with per-frame joint positions. Loading always validates; saving is
+//! atomic. This module does not generate, simulate or render anything.
+
+mod category;
+mod error;
+mod floor_plan;
+mod human;
+mod io;
+mod object;
+#[allow(clippy::module_inception)]
+mod scene;
+mod validate;
+
+pub use category::{Action, Category, Group, RoomType};
+pub use error::{Problem, ProblemKind, SceneError};
+pub use floor_plan::FloorPlan;
+pub use human::{ActionSpan, Bone, Human, Skeleton};
+pub use io::write_atomic;
+pub use object::Object;
+pub use scene::{FORMAT, Scene};
+pub use validate::validate;

@@ -1,0 +1,32 @@
+//! The `shade-scene/1` document: room type, floor plan, objects and humans.
+
+use super::{FloorPlan, Human, Object, RoomType};
+use serde::{Deserialize, Serialize};
+
+/// The format tag every scene file carries.
+pub const FORMAT: &str = "shade-scene/1";
+
+/// A scene: what `generate` reads (no objects) and writes (with objects).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Always [`FORMAT`].
+    pub format: String,
+    /// Room type; selects the category vocabulary.
+    pub room_type: RoomType,
+    /// Floor polygon and ceiling height.
+    pub floor_plan: FloorPlan,
+    /// Furniture (empty in a generation input).
+    #[serde(default)]
+    pub objects: Vec<Object>,
+    /// Human motions.
+    #[serde(default)]
+    pub humans: Vec<Human>,
+}
+
+impl Scene {
+    /// An empty scene of `room_type` over `floor_plan`.
+    pub fn new(room_type: RoomType, floor_plan: FloorPlan) -> Scene {
+        Scene { format: FORMAT.to_string(), room_type, floor_plan, objects: Vec::new(), humans: Vec::new() }
+    }
+}
