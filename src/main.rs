@@ -1,1 +1,19 @@
-fn main(){}
+//! `shade-sim`: parse the command line, run the command, map the outcome to an exit code
+//! (0 ok, 1 found something, e.g. violations; 2 error with one line `error: <file>: <what>`).
+
+use clap::Parser;
+use std::process::ExitCode;
+
+fn main() -> ExitCode {
+    let cli = cli::Cli::parse();
+    cli::init_logging(&cli.global);
+    match cli::run(cli) {
+        Ok(status) => status.into(),
+        Err(e) => {
+            eprintln!("error: {}", cli::one_line(&e));
+            cli::ExitStatus::Error.into()
+        }
+    }
+}
+
+mod cli;

@@ -58,6 +58,15 @@ impl Polygon {
         (min, max)
     }
 
+    /// Whether all vertices lie on one line (or one point): the polygon encloses nothing.
+    pub fn is_degenerate(&self) -> bool {
+        let Some(&p0) = self.points.first() else { return true };
+        let far = self.points.iter().copied().max_by(|a, b| a.distance_squared(p0).total_cmp(&b.distance_squared(p0)));
+        let Some(far) = far.filter(|f| *f != p0) else { return true };
+        let d = far - p0;
+        self.points.iter().all(|&p| d.perp_dot(p - p0).abs() <= 1e-12 * d.length_squared())
+    }
+
     /// Whether `p` is inside (even–odd rule; points exactly on an edge may go either way).
     pub fn contains(&self, p: DVec2) -> bool {
         let mut inside = false;
@@ -179,8 +188,7 @@ fn on_segment(a: DVec2, b: DVec2, p: DVec2) -> bool {
 /// Whether the closed segments `a`–`b` and `c`–`d` share a point.
 pub fn segments_intersect(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
     let (o1, o2, o3, o4) = (orient(a, b, c), orient(a, b, d), orient(c, d, a), orient(c, d, b));
-    if ((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0)) && ((o3 > 0.0 && o4 < 0.0) || (o3 < 0.0 && o4 > 0.0))
-    {
+    if ((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0)) && ((o3 > 0.0 && o4 < 0.0) || (o3 < 0.0 && o4 > 0.0)) {
         return true;
     }
     (o1 == 0.0 && on_segment(a, b, c))

@@ -135,9 +135,13 @@ impl Mask {
     pub fn fill_footprint(&mut self, window: &RoomWindow, b: &OBox) {
         let (min, max) = b.footprint_aabb();
         let (cols, rows) = window.pixel_ranges(min, max);
+        let (ax, ay) = b.axes();
+        let (hx, hy) = (b.size.x * 0.5, b.size.y * 0.5);
+        let c = b.center.truncate();
         for j in rows {
             for i in cols.clone() {
-                if b.footprint_contains(window.pixel_center(i, j)) {
+                let d = window.pixel_center(i, j) - c;
+                if d.dot(ax).abs() <= hx && d.dot(ay).abs() <= hy {
                     self.set(i, j);
                 }
             }

@@ -113,12 +113,7 @@ fn feet(skeleton: &Skeleton) -> Vec<(usize, usize, f64)> {
 
 /// Largest radius of a bone with both ends in `joints`.
 fn radius_between(skeleton: &Skeleton, joints: &[usize]) -> Option<f64> {
-    skeleton
-        .bones
-        .iter()
-        .filter(|b| joints.contains(&b.a) && joints.contains(&b.b))
-        .map(|b| b.radius)
-        .reduce(f64::max)
+    skeleton.bones.iter().filter(|b| joints.contains(&b.a) && joints.contains(&b.b)).map(|b| b.radius).reduce(f64::max)
 }
 
 /// Largest radius of a bone touching joint `j`.
@@ -208,7 +203,13 @@ fn touching_palm(human: &Human, span: &ActionSpan) -> Option<DVec3> {
         Some((p - human.joint_at(mid, pelvis)).truncate().dot(facing))
     };
     let side = match (reach("left"), reach("right")) {
-        (Some(l), Some(r)) => if l > r { "left" } else { "right" },
+        (Some(l), Some(r)) => {
+            if l > r {
+                "left"
+            } else {
+                "right"
+            }
+        }
         (Some(_), None) => "left",
         (None, Some(_)) => "right",
         (None, None) => return None,
@@ -220,7 +221,12 @@ fn touching_palm(human: &Human, span: &ActionSpan) -> Option<DVec3> {
 
 /// `boundary` points along the floor-plan boundary (with outward normals) followed by `interior`
 /// points of an interior grid, relative to the window centre.
-pub fn floor_points(polygon: &crate::geom::Polygon, window: &RoomWindow, boundary: usize, interior: usize) -> Vec<FloorPoint> {
+pub fn floor_points(
+    polygon: &crate::geom::Polygon,
+    window: &RoomWindow,
+    boundary: usize,
+    interior: usize,
+) -> Vec<FloorPoint> {
     let c = window.center;
     let mut out: Vec<FloorPoint> = polygon
         .sample_boundary(boundary)

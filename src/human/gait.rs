@@ -113,7 +113,10 @@ impl Gait {
         let phase = cycle - k;
         // Heel strike of cycle k happened with the pelvis at `strike`; the foot lands half a step ahead.
         let strike = (k - if side == Side::Right { 0.5 } else { 0.0 }) * stride;
+        // Plants before the start or past the end of the path stay at its ends (the first and last
+        // steps are shorter), so no foot lands outside the path's span.
         let plant = |arc: f64| -> (DVec3, DVec2) {
+            let arc = arc.clamp(0.0, path.length());
             let d = path.direction_at(arc, 0.35);
             let right = DVec2::new(d.y, -d.x);
             let p = path.point_at(arc) + right * (side.sign() * body.hip_half_width() * 1.1);
@@ -200,10 +203,8 @@ mod tests {
         }
         // A planted toe stays put between consecutive stance frames: count frames where the left toe
         // did not move (stance ≈ 60 % of frames).
-        let still = poses
-            .windows(2)
-            .filter(|w| w[0].get(Joint::LeftToe).distance(w[1].get(Joint::LeftToe)) < 1e-9)
-            .count();
+        let still =
+            poses.windows(2).filter(|w| w[0].get(Joint::LeftToe).distance(w[1].get(Joint::LeftToe)) < 1e-9).count();
         let ratio = still as f64 / (poses.len() - 1) as f64;
         assert!((0.45..0.7).contains(&ratio), "stance ratio {ratio}");
         // Step length ≈ 0.7 m.

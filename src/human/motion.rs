@@ -109,13 +109,15 @@ mod tests {
         let spans: Vec<_> = h.actions.iter().map(|s| (s.start, s.end, s.action)).collect();
         assert_eq!(spans, vec![(0, 31, Action::Walk), (31, 46, Action::Stand), (66, 96, Action::Sit)]);
         assert_eq!(h.action_at(50), None);
-        assert!(crate::scene::validate(&crate::scene::Scene {
-            humans: vec![h],
-            ..crate::scene::Scene::new(
-                crate::scene::RoomType::Bedroom,
-                crate::scene::FloorPlan { polygon: vec![[0.0, 0.0], [3.0, 0.0], [3.0, 3.0]], height: 2.7 }
-            )
-        })
-        .is_empty());
+        assert!(
+            crate::scene::validate(&crate::scene::Scene {
+                humans: vec![h],
+                ..crate::scene::Scene::new(
+                    crate::scene::RoomType::Bedroom,
+                    crate::scene::FloorPlan { polygon: vec![[0.0, 0.0], [3.0, 0.0], [3.0, 3.0]], height: 2.7 }
+                )
+            })
+            .is_empty()
+        );
     }
 }

@@ -322,7 +322,9 @@ mod tests {
     #[test]
     fn touching_hand_reaches_the_target() {
         let b = Body::default();
-        for (target, yaw) in [(DVec3::new(1.0, 1.0, 0.75), 0.3), (DVec3::new(-2.0, 0.5, 1.4), -2.0), (DVec3::new(0.0, 0.0, 0.5), 2.0)] {
+        for (target, yaw) in
+            [(DVec3::new(1.0, 1.0, 0.75), 0.3), (DVec3::new(-2.0, 0.5, 1.4), -2.0), (DVec3::new(0.0, 0.0, 0.5), 2.0)]
+        {
             let p = touch(&b, target, yaw, Side::Right);
             assert!(p.hand_point(&b, Side::Right).distance(target) < 1e-6);
             assert!((seg(&p, Joint::RightShoulder, Joint::RightElbow) - b.upper_arm()).abs() < 1e-9);

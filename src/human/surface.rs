@@ -44,8 +44,8 @@ impl SurfaceSampler {
         };
         let total: f64 = (0..bones.len()).map(area).sum();
         let mut points = Vec::new();
-        for b in 0..bones.len() {
-            let r = bones[b].radius;
+        for (b, bone) in bones.iter().enumerate() {
+            let r = bone.radius;
             let l = length(b);
             let n = target as f64 * area(b) / total;
             let n_cyl = n * (TAU * r * l) / area(b);
@@ -113,9 +113,11 @@ impl SurfaceSampler {
 
 /// Whether `p` lies strictly inside a capsule other than `own`.
 fn buried(skeleton: &Skeleton, joints: &[DVec3], own: usize, p: DVec3) -> bool {
-    skeleton.bones.iter().enumerate().any(|(i, bone)| {
-        i != own && segment_distance_3d(p, joints[bone.a], joints[bone.b]) < bone.radius - 1e-9
-    })
+    skeleton
+        .bones
+        .iter()
+        .enumerate()
+        .any(|(i, bone)| i != own && segment_distance_3d(p, joints[bone.a], joints[bone.b]) < bone.radius - 1e-9)
 }
 
 /// Distance from `p` to the 3D segment `a`–`b`.
@@ -136,7 +138,6 @@ fn fibonacci_hemisphere(n: usize) -> impl Iterator<Item = DVec3> {
         DVec3::new(r * a.cos(), r * a.sin(), z)
     })
 }
-
 
 #[cfg(test)]
 mod tests {

@@ -12,13 +12,12 @@ use std::path::PathBuf;
 #[non_exhaustive]
 pub enum SceneError {
     /// The file could not be read or written.
-    #[error("{}: {source}", file.display())]
+    #[error("{}: {error}", file.display())]
     Io {
         /// The file.
         file: PathBuf,
-        /// The operating-system error.
-        #[source]
-        source: std::io::Error,
+        /// The operating-system error (part of the message, so not repeated as a source).
+        error: std::io::Error,
     },
     /// The text is not JSON of the expected shape (syntax, unknown field, wrong type, unknown name).
     #[error("{}: {}{message} (line {line}, column {column})", file.display(), path_prefix(path))]

@@ -17,8 +17,7 @@ impl Scene {
     /// a wrong shape (with the JSON path), [`SceneError::Invalid`] when a rule of the format is broken.
     pub fn load(file: impl AsRef<Path>) -> Result<Scene, SceneError> {
         let file = file.as_ref();
-        let text = std::fs::read_to_string(file)
-            .map_err(|source| SceneError::Io { file: file.to_path_buf(), source })?;
+        let text = std::fs::read_to_string(file).map_err(|error| SceneError::Io { file: file.to_path_buf(), error })?;
         Scene::from_json(&text, file)
     }
 
@@ -35,11 +34,7 @@ impl Scene {
             SceneError::Parse { file: origin.to_path_buf(), path, message, line: inner.line(), column: inner.column() }
         })?;
         let problems = validate(&scene);
-        if problems.is_empty() {
-            Ok(scene)
-        } else {
-            Err(SceneError::Invalid { file: origin.to_path_buf(), problems })
-        }
+        if problems.is_empty() { Ok(scene) } else { Err(SceneError::Invalid { file: origin.to_path_buf(), problems }) }
     }
 
     /// The scene as JSON text (see the module header for the layout).
@@ -63,7 +58,7 @@ impl Scene {
             return Err(SceneError::Invalid { file: file.to_path_buf(), problems });
         }
         write_atomic(file, self.to_json().as_bytes())
-            .map_err(|source| SceneError::Io { file: file.to_path_buf(), source })
+            .map_err(|error| SceneError::Io { file: file.to_path_buf(), error })
     }
 }
 

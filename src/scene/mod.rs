@@ -12,6 +12,7 @@ mod io;
 mod object;
 #[allow(clippy::module_inception)]
 mod scene;
+mod summary;
 mod validate;
 
 pub use category::{Action, Category, Group, RoomType};
@@ -21,4 +22,5 @@ pub use human::{ActionSpan, Bone, Human, Skeleton};
 pub use io::write_atomic;
 pub use object::Object;
 pub use scene::{FORMAT, Scene};
+pub use summary::{FloorSummary, HumanSummary, SceneSummary};
 pub use validate::validate;

@@ -69,6 +69,10 @@ fn floor_plan(scene: &Scene, out: &mut Problems) {
         return;
     }
     let polygon = plan.polygon();
+    if polygon.is_degenerate() {
+        out.push(path, ProblemKind::ZeroArea);
+        return;
+    }
     if let Some((a, b)) = polygon.first_self_intersection() {
         out.push(path, ProblemKind::SelfIntersecting { edge_a: a, edge_b: b });
         return;
@@ -150,9 +154,7 @@ fn human(path: &str, h: &Human, out: &mut Problems) {
                 span_path,
                 ProblemKind::ActionOutOfRange { start: span.start, end: span.end, frames: h.frames.len() },
             );
-        } else if let Some(other) =
-            h.actions[..k].iter().position(|o| o.start < span.end && span.start < o.end)
-        {
+        } else if let Some(other) = h.actions[..k].iter().position(|o| o.start < span.end && span.start < o.end) {
             out.push(span_path, ProblemKind::OverlappingActions { other });
         }
     }

@@ -1,1 +1,49 @@
-fn main(){}
+//! Integration tests: one binary (ripgrep's layout), one module per area.
+
+mod bad_input;
+mod cli;
+mod conditions;
+mod examples;
+mod geom_props;
+mod scene_io;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// Runs the `shade-sim` binary with `args`.
+pub fn shade_sim(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_shade-sim")).args(args).output().expect("the binary runs")
+}
+
+/// The repository root.
+pub fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The example scene files, sorted.
+pub fn example_scenes() -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(root().join("scenes/examples"))
+        .expect("scenes/examples exists")
+        .map(|e| e.expect("readable entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+        .collect();
+    files.sort();
+    files
+}
+
+/// stderr as text.
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// stdout as text.
+pub fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// Writes `text` to `dir/name` and returns the path.
+pub fn write_file(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, text).expect("temp dir is writable");
+    p
+}

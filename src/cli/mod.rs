@@ -1,0 +1,99 @@
+//! The command line: clap definitions, global flags, exit statuses and the dispatch to commands.
+//!
+//! Commands print human text by default and JSON with `--json` on stdout; logs go to stderr.
+//! Only this module (and `main.rs`) uses anyhow; the library returns typed errors.
+
+mod conditions;
+mod inspect;
+mod output;
+
+use clap::{Args, Parser, Subcommand};
+use std::process::ExitCode;
+
+/// Human-aware furniture layouts, proven physically.
+#[derive(Debug, Parser)]
+#[command(name = "shade-sim", version, about, propagate_version = true)]
+pub struct Cli {
+    #[command(flatten)]
+    pub global: GlobalArgs,
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// Flags every command takes.
+#[derive(Debug, Args)]
+pub struct GlobalArgs {
+    /// More log output on stderr (-v info, -vv debug).
+    #[arg(short, long, action = clap::ArgAction::Count, global = true)]
+    pub verbose: u8,
+    /// Less output: errors only.
+    #[arg(short, long, action = clap::ArgAction::Count, global = true, conflicts_with = "verbose")]
+    pub quiet: u8,
+    /// Machine-readable JSON on stdout instead of text.
+    #[arg(long, global = true)]
+    pub json: bool,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Summarise a scene: room, objects by category, humans, actions, frames, extents.
+    Inspect(inspect::InspectArgs),
+    /// Write a scene's conditioning: free-space and floor masks (PNG), contact boxes and floor
+    /// points (JSON), and a top/side view of the humans (PNG).
+    Conditions(conditions::ConditionsArgs),
+}
+
+/// How the process ends.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ExitStatus {
+    /// Done, nothing found.
+    Success,
+    /// Done, and something was found (violations, failed checks).
+    Found,
+    /// Bad input or a failure.
+    Error,
+}
+
+impl From<ExitStatus> for ExitCode {
+    fn from(s: ExitStatus) -> ExitCode {
+        match s {
+            ExitStatus::Success => ExitCode::from(0),
+            ExitStatus::Found => ExitCode::from(1),
+            ExitStatus::Error => ExitCode::from(2),
+        }
+    }
+}
+
+/// Runs the parsed command.
+pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
+    let result = match &cli.command {
+        Command::Inspect(args) => inspect::run(args, &cli.global),
+        Command::Conditions(args) => conditions::run(args, &cli.global),
+    };
+    match result {
+        Err(e) if output::is_broken_pipe(&e) => Ok(ExitStatus::Success),
+        other => other,
+    }
+}
+
+/// An error chain on one line: `outer: inner: innermost`, newlines folded.
+pub fn one_line(e: &anyhow::Error) -> String {
+    format!("{e:#}").replace('\n', " ")
+}
+
+/// Logs to stderr at a level set by -v / -q (warnings by default).
+pub fn init_logging(global: &GlobalArgs) {
+    use tracing::Level;
+    let level = match (global.quiet, global.verbose) {
+        (q, _) if q > 0 => Level::ERROR,
+        (_, 0) => Level::WARN,
+        (_, 1) => Level::INFO,
+        _ => Level::DEBUG,
+    };
+    let _ = tracing_subscriber::fmt()
+        .with_max_level(level)
+        .with_writer(std::io::stderr)
+        .with_target(false)
+        .without_time()
+        .try_init();
+}

@@ -1,0 +1,190 @@
+//! Every kind of bad input gets one line `error: <file>: <what>` and exit code 2.
+
+use crate::{shade_sim, stderr, write_file};
+use glam::DVec2;
+use serde_json::{Value, json};
+use shade_sim::human::{Body, Motion, stand};
+use shade_sim::scene::{Action, FloorPlan, RoomType, Scene};
+
+/// A small valid bedroom: one double bed, one standing human with three frames.
+fn valid() -> Value {
+    let body = Body::default();
+    let mut m = Motion::new(body, 30.0);
+    m.hold(stand(&body, DVec2::new(1.0, 1.0), 0.0), 3, Action::Stand);
+    let mut scene = Scene::new(
+        RoomType::Bedroom,
+        FloorPlan { polygon: vec![[0.0, 0.0], [4.0, 0.0], [4.0, 3.5], [0.0, 3.5]], height: 2.8 },
+    );
+    scene.humans.push(m.into_human("h0"));
+    let mut v = serde_json::to_value(&scene).unwrap();
+    v["objects"] = json!([{ "id": "o0", "category": "double_bed", "center": [2.0, 2.4, 0.25],
+                            "size": [1.6, 2.0, 0.5], "yaw": 3.25 }]);
+    v
+}
+
+/// Runs `inspect` on the JSON text and checks exit 2 and a one-line message containing `expect`.
+fn rejects_text(text: &str, expect: &str) {
+    let dir = tempfile::tempdir().unwrap();
+    let file = write_file(dir.path(), "scene.json", text);
+    let out = shade_sim(&["inspect", file.to_str().unwrap()]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "stderr: {err}");
+    assert!(out.stdout.is_empty(), "nothing on stdout");
+    assert_eq!(err.lines().count(), 1, "one line: {err}");
+    let prefix = format!("error: {}: ", file.display());
+    assert!(err.starts_with(&prefix), "names the file: {err}");
+    assert!(err.contains(expect), "expected {expect:?} in {err}");
+}
+
+fn rejects(edit: impl FnOnce(&mut Value), expect: &str) {
+    let mut v = valid();
+    edit(&mut v);
+    rejects_text(&serde_json::to_string(&v).unwrap(), expect);
+}
+
+#[test]
+fn the_valid_base_is_accepted() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = write_file(dir.path(), "scene.json", &valid().to_string());
+    let out = shade_sim(&["inspect", file.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+}
+
+#[test]
+fn malformed_json() {
+    rejects_text("{ \"format\": \"shade-scene/1\", ", "EOF while parsing");
+    rejects_text("{\"format\": \"shade-scene/1\" \"room_type\": 1}", "line 1, column");
+}
+
+#[test]
+fn nan_and_overflowing_numbers() {
+    let text = valid().to_string().replace("3.25", "NaN");
+    rejects_text(&text, "objects[0].yaw");
+    let text = valid().to_string().replace("3.25", "1e999");
+    rejects_text(&text, "objects[0].yaw: number out of range");
+}
+
+#[test]
+fn unknown_fields_at_any_depth() {
+    rejects(|v| v["colour"] = json!("red"), "unknown field `colour`");
+    rejects(|v| v["objects"][0]["mass"] = json!(3), "objects[0].mass: unknown field `mass`");
+    rejects(
+        |v| v["humans"][0]["skeleton"]["bones"][1]["length"] = json!(3),
+        "humans[0].skeleton.bones[1].length: unknown field `length`",
+    );
+}
+
+#[test]
+fn categories_unknown_or_from_another_room() {
+    rejects(|v| v["objects"][0]["category"] = json!("spaceship"), "objects[0].category: unknown variant `spaceship`");
+    rejects(
+        |v| v["objects"][0]["category"] = json!("dining_chair"),
+        "objects[0].category: category \"dining_chair\" is not a bedroom category",
+    );
+    rejects(|v| v["room_type"] = json!("kitchen"), "room_type: unknown variant `kitchen`");
+}
+
+#[test]
+fn non_positive_sizes() {
+    rejects(|v| v["objects"][0]["size"][1] = json!(0.0), "objects[0].size[1]: must be positive, found 0");
+    rejects(|v| v["objects"][0]["size"][2] = json!(-0.5), "objects[0].size[2]: must be positive, found -0.5");
+    rejects(|v| v["floor_plan"]["height"] = json!(0), "floor_plan.height: must be positive");
+    rejects(|v| v["humans"][0]["fps"] = json!(0), "humans[0].fps: must be positive");
+    rejects(|v| v["humans"][0]["skeleton"]["bones"][0]["radius"] = json!(-1), "bones[0].radius: must be positive");
+}
+
+#[test]
+fn bad_floor_polygons() {
+    rejects(|v| v["floor_plan"]["polygon"] = json!([[0, 0], [1, 0]]), "floor polygon has 2 vertices, needs at least 3");
+    rejects(|v| v["floor_plan"]["polygon"] = json!([[0, 0], [1, 0], [2, 0]]), "floor polygon has zero area");
+    rejects(|v| v["floor_plan"]["polygon"] = json!([[0, 0], [1e-4, 0], [0, 1e-4]]), "floor polygon has zero area");
+    rejects(
+        |v| v["floor_plan"]["polygon"] = json!([[0, 0], [4, 4], [4, 0], [0, 4]]),
+        "floor polygon intersects itself (edges 0 and 2)",
+    );
+    rejects(
+        |v| v["floor_plan"]["polygon"] = json!([[0, 0], [0, 3], [4, 3], [4, 0]]),
+        "floor_plan.polygon: floor polygon is clockwise",
+    );
+}
+
+#[test]
+fn humans_that_disagree_with_their_skeleton() {
+    rejects(
+        |v| {
+            v["humans"][0]["frames"][1].as_array_mut().unwrap().pop();
+        },
+        "humans[0].frames[1]: frame has 18 joint positions, skeleton has 19 joints",
+    );
+    rejects(
+        |v| v["humans"][0]["skeleton"]["bones"][3]["b"] = json!(19),
+        "humans[0].skeleton.bones[3]: bone joint index 19 out of range",
+    );
+    rejects(|v| v["humans"][0]["skeleton"]["joints"][4] = json!("skull"), "lacks the required joint \"head\"");
+    rejects(
+        |v| v["humans"][0]["actions"][0]["end"] = json!(4),
+        "humans[0].actions[0]: action range [0, 4) is empty or outside the 3 frames",
+    );
+    rejects(|v| v["humans"][0]["actions"][0]["start"] = json!(3), "action range [3, 3)");
+    rejects(|v| v["humans"][0]["frames"] = json!([]), "humans[0].frames: human has no frames");
+    rejects(|v| v["humans"][0]["actions"][0]["action"] = json!("dance"), "unknown variant `dance`");
+}
+
+#[test]
+fn wrong_format_and_duplicate_ids() {
+    rejects(
+        |v| v["format"] = json!("shade-scene/2"),
+        "format: format is \"shade-scene/2\", expected \"shade-scene/1\"",
+    );
+    rejects(
+        |v| {
+            let o = v["objects"][0].clone();
+            v["objects"].as_array_mut().unwrap().push(o);
+        },
+        "objects[1].id: id \"o0\" is used twice",
+    );
+}
+
+#[test]
+fn several_problems_are_counted_in_one_line() {
+    rejects(
+        |v| {
+            v["objects"][0]["size"][0] = json!(0);
+            v["floor_plan"]["height"] = json!(-1);
+        },
+        "(and 1 more problem)",
+    );
+}
+
+#[test]
+fn missing_file() {
+    let out = shade_sim(&["inspect", "/nonexistent/scene.json"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = stderr(&out);
+    assert_eq!(err.trim_end(), "error: /nonexistent/scene.json: No such file or directory (os error 2)");
+}
+
+#[test]
+fn conditions_on_bad_input_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut v = valid();
+    v["floor_plan"]["polygon"] = json!([[0, 0], [1, 0]]);
+    let file = write_file(dir.path(), "scene.json", &v.to_string());
+    let out_dir = dir.path().join("cond");
+    let out = shade_sim(&["conditions", file.to_str().unwrap(), "--out", out_dir.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(!out_dir.exists(), "no output folder for a rejected scene");
+}
+
+#[test]
+fn conditions_into_an_unwritable_place_fails_cleanly() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = write_file(dir.path(), "scene.json", &valid().to_string());
+    let blocker = write_file(dir.path(), "taken", "a file, not a folder");
+    let target = blocker.join("cond");
+    let out = shade_sim(&["conditions", file.to_str().unwrap(), "--out", target.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = stderr(&out);
+    assert!(err.starts_with(&format!("error: {}: cannot create folder", target.display())), "{err}");
+    assert_eq!(std::fs::read_to_string(&blocker).unwrap(), "a file, not a folder");
+}

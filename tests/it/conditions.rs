@@ -1,0 +1,99 @@
+//! Conditioning on hand-built scenes with known answers.
+
+use glam::{DVec2, DVec3};
+use shade_sim::geom::{Mask, RoomWindow};
+use shade_sim::human::{Body, Conditions, Motion, SUPPORT_DEPTH, Side, TOUCH_SIDE, sit, stand, touch};
+use shade_sim::scene::{Action, FloorPlan, RoomType, Scene};
+
+fn room() -> Scene {
+    Scene::new(
+        RoomType::Bedroom,
+        FloorPlan { polygon: vec![[0.0, 0.0], [5.0, 0.0], [5.0, 4.0], [0.0, 4.0]], height: 2.7 },
+    )
+}
+
+fn one(pose: shade_sim::human::Pose, action: Action, id: &str) -> shade_sim::scene::Human {
+    let mut m = Motion::new(Body::default(), 30.0);
+    m.hold(pose, 10, action);
+    m.into_human(id)
+}
+
+#[test]
+fn sitting_box_is_the_support_volume_under_pelvis_and_thighs() {
+    let body = Body::default();
+    let mut scene = room();
+    let yaw = 0.7;
+    scene.humans.push(one(sit(&body, DVec2::new(2.0, 2.0), 0.45, yaw), Action::Sit, "h0"));
+    let c = Conditions::of(&scene);
+    assert_eq!(c.contact_boxes.len(), 1);
+    let b = &c.contact_boxes[0];
+    assert_eq!((b.human.as_str(), b.action, b.frames), ("h0", Action::Sit, [0, 10]));
+    assert!((b.obox.yaw - yaw).abs() < 1e-3);
+    let (z0, z1) = b.obox.z_range();
+    assert!((z1 - 0.45).abs() < 1e-3, "top at the seat: {z1}");
+    assert!((z1 - z0 - SUPPORT_DEPTH).abs() < 1e-9);
+    // Width: hips ± thigh radius, a bit wider at the knees; depth: from behind the pelvis to the knees.
+    assert!((0.25..0.45).contains(&b.obox.size.x), "{}", b.obox.size.x);
+    assert!((0.45..0.75).contains(&b.obox.size.y), "{}", b.obox.size.y);
+    // The box lies in front of the pelvis along the facing direction.
+    let facing = DVec2::new(-yaw.sin(), yaw.cos());
+    let ahead = (b.obox.center.truncate() - DVec2::new(2.0, 2.0)).dot(facing);
+    assert!((0.1..0.35).contains(&ahead), "{ahead}");
+    // No walking or standing frames: no free space.
+    assert_eq!(c.free_space.count(), 0);
+}
+
+#[test]
+fn touch_box_is_a_cube_on_the_palm() {
+    let body = Body::default();
+    let mut scene = room();
+    let target = DVec3::new(3.0, 1.0, 0.75);
+    scene.humans.push(one(touch(&body, target, 1.2, Side::Left), Action::Touch, "h0"));
+    let c = Conditions::of(&scene);
+    let b = &c.contact_boxes[0];
+    assert!(b.obox.center.distance(target) < 2e-3, "{:?}", b.obox.center);
+    assert_eq!(b.obox.size, DVec3::splat(TOUCH_SIDE));
+}
+
+#[test]
+fn free_space_marks_the_feet_of_a_standing_human_only() {
+    let body = Body::default();
+    let mut scene = room();
+    let at = DVec2::new(1.5, 2.5);
+    scene.humans.push(one(stand(&body, at, 0.0), Action::Stand, "h0"));
+    let c = Conditions::of(&scene);
+    let n = c.free_space.count();
+    // Two feet of ≈ 0.19 × 0.077 m plus round ends, at 2.42 cm pixels: ≈ 2 × 33 pixels.
+    assert!((40..110).contains(&n), "{n}");
+    for (j, row) in c.free_space.rows().enumerate() {
+        for (i, &set) in row.iter().enumerate() {
+            if set {
+                let p = c.window.pixel_center(i, j);
+                assert!(p.distance(at + DVec2::new(0.0, 0.1)) < 0.25, "pixel {p} far from the feet");
+            }
+        }
+    }
+    assert!(c.contact_boxes.is_empty());
+}
+
+#[test]
+fn floor_mask_and_points_follow_the_plan() {
+    let c = Conditions::of(&room());
+    let w = RoomWindow { center: DVec2::new(2.5, 2.0), side: 6.2 };
+    assert_eq!(c.window, w);
+    let expected = 20.0 / w.pixel_area();
+    assert!((c.floor.count() as f64 - expected).abs() < 18.0 / w.pixel() * 1.0, "{} vs {expected}", c.floor.count());
+    assert_eq!(c.floor_points.len(), 256);
+    // Boundary points lie on the walls (relative to the window centre), interior points inside.
+    for p in &c.floor_points[..128] {
+        let q = DVec2::from(p.position) + w.center;
+        let on_wall = q.x.abs() < 1e-9 || (q.x - 5.0).abs() < 1e-9 || q.y.abs() < 1e-9 || (q.y - 4.0).abs() < 1e-9;
+        assert!(on_wall, "{q}");
+        assert!((DVec2::from(p.normal).length() - 1.0).abs() < 1e-12);
+    }
+    for p in &c.floor_points[128..] {
+        let q = DVec2::from(p.position) + w.center;
+        assert!(q.x > 0.0 && q.x < 5.0 && q.y > 0.0 && q.y < 4.0 && p.normal == [0.0, 0.0]);
+    }
+    assert_eq!(c.free_space, Mask::new());
+}
