@@ -7,6 +7,7 @@
 #![warn(missing_docs)]
 
 pub mod export;
+pub mod furniture;
 pub mod geom;
 pub mod human;
 pub mod scene;

@@ -1,0 +1,12 @@
+//! Furniture knowledge shared by every part of shade-sim: real dimensions per category and the
+//! shape templates (parts fitted to a bounding box, support surfaces).
+//!
+//! DESIGN.md puts the templates in `sim`; they live here, in the base, because the dataset
+//! (placing people on seats), the physics worlds, the MJCF export and E_pen all need the same
+//! shapes, and one definition must serve them all. This module does no physics and no IO.
+
+mod catalog;
+mod template;
+
+pub use catalog::{CatalogItem, catalog_items};
+pub use template::{Part, PartRole, Surface, Template, template, template_of};
