@@ -6,6 +6,8 @@
 //! The command-line tool `shade-sim` is a thin layer over this library.
 #![warn(missing_docs)]
 
+pub mod data;
+pub mod eval;
 pub mod export;
 pub mod furniture;
 pub mod geom;

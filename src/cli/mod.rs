@@ -6,6 +6,8 @@
 mod conditions;
 mod inspect;
 mod output;
+mod progress;
+mod synth;
 
 use clap::{Args, Parser, Subcommand};
 use std::process::ExitCode;
@@ -32,6 +34,33 @@ pub struct GlobalArgs {
     /// Machine-readable JSON on stdout instead of text.
     #[arg(long, global = true)]
     pub json: bool,
+    /// No progress bars.
+    #[arg(long, global = true)]
+    pub no_progress: bool,
+}
+
+/// A room type on the command line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum RoomArg {
+    Bedroom,
+    Living,
+    Dining,
+}
+
+impl RoomArg {
+    pub fn name(self) -> &'static str {
+        shade_sim::scene::RoomType::from(self).name()
+    }
+}
+
+impl From<RoomArg> for shade_sim::scene::RoomType {
+    fn from(r: RoomArg) -> Self {
+        match r {
+            RoomArg::Bedroom => shade_sim::scene::RoomType::Bedroom,
+            RoomArg::Living => shade_sim::scene::RoomType::Living,
+            RoomArg::Dining => shade_sim::scene::RoomType::Dining,
+        }
+    }
 }
 
 #[derive(Debug, Subcommand)]
@@ -41,6 +70,9 @@ pub enum Command {
     /// Write a scene's conditioning: free-space and floor masks (PNG), contact boxes and floor
     /// points (JSON), and a top/side view of the humans (PNG).
     Conditions(conditions::ConditionsArgs),
+    /// Procedural human-populated rooms (a 3D-FRONT HUMAN stand-in): DIR/{train,val,test}/*.json
+    /// and DIR/stats.json.
+    Synth(synth::SynthArgs),
 }
 
 /// How the process ends.
@@ -69,6 +101,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
     let result = match &cli.command {
         Command::Inspect(args) => inspect::run(args, &cli.global),
         Command::Conditions(args) => conditions::run(args, &cli.global),
+        Command::Synth(args) => synth::run(args, &cli.global),
     };
     match result {
         Err(e) if output::is_broken_pipe(&e) => Ok(ExitStatus::Success),

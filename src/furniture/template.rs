@@ -164,7 +164,11 @@ pub fn template_of(category: Category, obox: &OBox) -> Template {
             b.part(PartRole::Top, [w, d, t], [0.0, 0.0, top - t]);
             b.legs(w, d, top - t);
             if top < h {
-                b.part(PartRole::Panel, [w, 0.04f64.min(d * 0.2), h - top], [0.0, (0.04f64.min(d * 0.2) - d) * 0.5, top]);
+                b.part(
+                    PartRole::Panel,
+                    [w, 0.04f64.min(d * 0.2), h - top],
+                    [0.0, (0.04f64.min(d * 0.2) - d) * 0.5, top],
+                );
             }
             surface(top, full)
         }

@@ -13,7 +13,7 @@ mod raster;
 
 pub use clip::{clip_convex, footprint_intersection_area, signed_area};
 pub use intersection::{intersection_volume, iou_3d};
-pub use obox::OBox;
+pub use obox::{OBox, facing, yaw_facing};
 pub use polygon::{BoundarySample, Polygon, point_segment_distance, segments_intersect};
 pub use polyline::Polyline;
 pub use raster::{Mask, RES, RoomWindow};

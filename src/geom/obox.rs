@@ -113,6 +113,16 @@ impl OBox {
     }
 }
 
+/// The yaw whose front (local +y) faces the horizontal direction `dir`.
+pub fn yaw_facing(dir: DVec2) -> f64 {
+    (-dir.x).atan2(dir.y)
+}
+
+/// The horizontal unit direction the front (local +y) of something with `yaw` faces.
+pub fn facing(yaw: f64) -> DVec2 {
+    DVec2::new(-yaw.sin(), yaw.cos())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -84,6 +84,13 @@ impl Conditions {
     }
 }
 
+impl Conditions {
+    /// Only the contact boxes of a scene (cheaper than [`Conditions::of`]).
+    pub fn contact_boxes_of(scene: &Scene) -> Vec<ContactBox> {
+        scene.humans.iter().flat_map(contact_boxes).collect()
+    }
+}
+
 /// The feet of all walking and standing frames of all humans.
 pub fn free_space_mask(scene: &Scene, window: &RoomWindow) -> Mask {
     let mut mask = Mask::new();

@@ -1,0 +1,269 @@
+//! Humans for a furnished room, the way 3D-FRONT HUMAN has them: contact humans on the pieces that
+//! afford them (MIME's mapping) and walkers whose paths cover the free floor.
+//!
+//! Contact humans are static poses (one frame), placed on the piece's template surface: sitters on
+//! seats with their back clear of the backrest, sleepers on mattresses with the head at the
+//! headboard, touchers with the palm on a top or a front face. Walkers follow shortest paths between
+//! random points of the walkable floor (0.3 m clear of furniture, walls and contact humans), at
+//! 1.0–1.4 m/s, recorded at 10 fps.
+
+use super::Rng;
+use super::layout::{FreeGrid, Layout, Placed};
+use crate::eval::{FurnitureField, human_penetration};
+use crate::furniture::template_of;
+use crate::geom::{OBox, Polyline, facing, yaw_facing};
+use crate::human::{Body, Motion, Pose, Side, lie, sit, touch};
+use crate::scene::{Action, Category, Group, Human, Object};
+use glam::{DVec2, DVec3};
+use std::collections::VecDeque;
+
+/// Frames per second of walkers in the dataset.
+pub const WALK_FPS: f64 = 10.0;
+/// Largest E_pen a clean contact human may have against the furniture.
+const CLEAN_PENETRATION: f64 = 0.5;
+
+/// A sampled adult stature (m).
+fn adult(rng: &mut Rng) -> f64 {
+    (1.70 + 0.08 * rng.normal()).clamp(1.5, 1.95)
+}
+
+/// The pose of a person doing `action` on `piece`, or `None` if the piece has no room for it.
+pub fn contact_pose(piece: &Placed, action: Action, slot: f64, rng: &mut Rng) -> Option<(Body, Pose)> {
+    let b = &piece.obox;
+    let surface = template_of(piece.category, b).surface?;
+    let stature = if piece.category == Category::KidsBed { rng.uniform(1.1, 1.5) } else { adult(rng) };
+    let body = Body::new(stature);
+    let to_world = |l: DVec2| b.to_world(l.extend(0.0)).truncate();
+    let ext = surface.extent();
+    let pose = match (action, piece.category.group()) {
+        (Action::Lie, _) => {
+            let head_room = 0.12 + 0.45 * stature;
+            if ext.y < head_room + 0.55 * stature - 0.05 || ext.x < 0.5 {
+                return None;
+            }
+            let x = (slot * (ext.x * 0.5 - 0.35).max(0.0)).clamp(-ext.x * 0.5, ext.x * 0.5);
+            let at = to_world(DVec2::new((surface.min.x + surface.max.x) * 0.5 + x, surface.min.y + head_room));
+            lie(&body, at, surface.height, b.yaw)
+        }
+        (Action::Sit, Group::Bed) => {
+            let side = if slot < 0.0 { -1.0 } else { 1.0 };
+            let y = surface.min.y + ext.y * rng.uniform(0.35, 0.75);
+            let at = to_world(DVec2::new(side * (ext.x * 0.5 - 0.2), y));
+            let dir = b.to_world(DVec3::new(side, 0.0, 0.0)).truncate() - b.center.truncate();
+            sit(&body, at, surface.height, yaw_facing(dir))
+        }
+        (Action::Sit, Group::Stool) => sit(&body, to_world((surface.min + surface.max) * 0.5), surface.height, b.yaw),
+        (Action::Sit, _) => {
+            if ext.x < 0.4 || ext.y < 0.3 {
+                return None;
+            }
+            let x = (surface.min.x + surface.max.x) * 0.5 + slot * (ext.x * 0.5 - 0.3).max(0.0);
+            sit(&body, to_world(DVec2::new(x, surface.min.y + 0.19)), surface.height, b.yaw)
+        }
+        (Action::Touch, _) => {
+            let x = rng.uniform(-0.3, 0.3) * b.size.x;
+            let target = if b.size.z <= 1.0 {
+                b.to_world(DVec3::new(x, b.size.y * 0.5 - 0.08, surface.height - b.center.z))
+            } else {
+                let z = rng.uniform(0.9, (b.size.z - 0.1).min(1.5));
+                b.to_world(DVec3::new(x, b.size.y * 0.5, z - b.center.z))
+            };
+            let side = if rng.chance(0.5) { Side::Left } else { Side::Right };
+            touch(&body, target, b.yaw + std::f64::consts::PI, side)
+        }
+        (Action::Walk | Action::Stand, _) => return None,
+    };
+    Some((body, pose))
+}
+
+/// How many people a piece seats side by side.
+fn sitters(piece: &Placed, rng: &mut Rng) -> usize {
+    match piece.category.group() {
+        Group::Sofa => {
+            let fit = ((piece.obox.size.x - 0.3) / 0.65).floor().max(1.0) as usize;
+            rng.range(1, fit.min(3))
+        }
+        _ => 1,
+    }
+}
+
+/// Contact humans on the pieces of `layout` (each piece that affords an action gets one with a
+/// probability; at least one per room where any piece affords one).
+pub fn contact_humans(layout: &Layout, objects: &[Object], rng: &mut Rng) -> Vec<(Action, usize, Human)> {
+    let field = FurnitureField::new(objects);
+    let polygon = layout.polygon();
+    let mut out: Vec<(Action, usize, Human)> = Vec::new();
+    let candidates: Vec<usize> =
+        (0..layout.placed.len()).filter(|&i| !layout.placed[i].category.affordances().is_empty()).collect();
+    let mut chosen: Vec<usize> =
+        candidates.iter().copied().filter(|&i| rng.chance(probability(&layout.placed[i]))).collect();
+    if chosen.is_empty() && !candidates.is_empty() {
+        chosen.push(candidates[rng.index(candidates.len())]);
+    }
+    for i in chosen {
+        let piece = &layout.placed[i];
+        let weights: Vec<f64> =
+            piece.category.affordances().iter().map(|&a| piece.category.affordance_probability(a)).collect();
+        let action = piece.category.affordances()[rng.weighted(&weights)];
+        let n = if action == Action::Sit { sitters(piece, rng) } else { 1 };
+        for k in 0..n {
+            let slot = if n == 1 { rng.uniform(-0.3, 0.3) } else { -1.0 + 2.0 * k as f64 / (n - 1) as f64 };
+            let slot = if piece.category.group() == Group::Bed && action == Action::Sit {
+                rng.uniform(-1.0, 1.0)
+            } else {
+                slot
+            };
+            let Some((body, pose)) = contact_pose(piece, action, slot, rng) else { continue };
+            let mut m = Motion::new(body, 30.0);
+            m.hold(pose, 1, action);
+            let human = m.into_human(String::new());
+            let inside = human.frames[0].iter().all(|p| polygon.signed_distance(DVec2::new(p[0], p[1])) < -0.02);
+            let apart = out.iter().all(|(_, _, o)| bodies_apart(o, &human));
+            if inside && apart && human_penetration(&human, &field) < CLEAN_PENETRATION {
+                out.push((action, i, human));
+            }
+        }
+    }
+    out
+}
+
+fn probability(p: &Placed) -> f64 {
+    match p.category.group() {
+        Group::Bed => 0.85,
+        Group::Sofa => 0.7,
+        Group::Chair | Group::Stool => 0.45,
+        _ => 0.35,
+    }
+}
+
+/// Whether two single-frame bodies keep 5 cm between their capsules (checked joint to joint).
+fn bodies_apart(a: &Human, b: &Human) -> bool {
+    let reach = |h: &Human| h.skeleton.bones.iter().map(|x| x.radius).fold(0.0, f64::max);
+    let limit = reach(a) + reach(b) + 0.05;
+    a.frames[0].iter().all(|p| b.frames[0].iter().all(|q| DVec3::from(*p).distance(DVec3::from(*q)) > limit))
+}
+
+/// Footprint of a single-frame body as a box around its joints (for walkers to avoid).
+fn body_box(h: &Human) -> OBox {
+    let pts: Vec<DVec2> = h.frames[0].iter().map(|p| DVec2::new(p[0], p[1])).collect();
+    let lo = pts.iter().fold(DVec2::splat(f64::INFINITY), |m, &p| m.min(p)) - 0.12;
+    let hi = pts.iter().fold(DVec2::splat(f64::NEG_INFINITY), |m, &p| m.max(p)) + 0.12;
+    OBox::new(((lo + hi) * 0.5).extend(1.0), (hi - lo).extend(2.0), 0.0)
+}
+
+/// `count` walkers over the free floor, avoiding furniture and the given contact humans.
+pub fn walkers(layout: &Layout, contact: &[Human], count: usize, rng: &mut Rng) -> Vec<Human> {
+    let bodies: Vec<OBox> = contact.iter().map(body_box).collect();
+    let obstacles = layout.placed.iter().filter(|p| !p.category.is_hanging()).map(|p| &p.obox).chain(bodies.iter());
+    let grid = FreeGrid::new(layout.polygon(), obstacles);
+    let Some(main) = grid.main_component() else { return Vec::new() };
+    let (nx, ny, _) = grid.shape();
+    let cells: Vec<(usize, usize)> =
+        (0..ny).flat_map(|j| (0..nx).map(move |i| (i, j))).filter(|&(i, j)| grid.label(i, j) == main).collect();
+    if cells.len() < 10 {
+        return Vec::new();
+    }
+    let mut out = Vec::new();
+    for _ in 0..count * 6 {
+        if out.len() == count {
+            break;
+        }
+        let a = cells[rng.index(cells.len())];
+        let b = cells[rng.index(cells.len())];
+        let Some(path) = shortest_path(&grid, main, a, b) else { continue };
+        let points = simplify(&grid, main, &path);
+        let Some(line) = Polyline::new(points) else { continue };
+        if line.length() < 2.0 {
+            continue;
+        }
+        let body = Body::new(adult(rng));
+        let mut m = Motion::new(body, WALK_FPS);
+        m.walk(&line, rng.uniform(1.0, 1.4));
+        out.push(m.into_human(String::new()));
+    }
+    out
+}
+
+/// 4-connected BFS between two cells of one component; cell centres of the path.
+fn shortest_path(grid: &FreeGrid, label: u32, a: (usize, usize), b: (usize, usize)) -> Option<Vec<DVec2>> {
+    let (nx, ny, _) = grid.shape();
+    let mut prev = vec![usize::MAX; nx * ny];
+    let start = a.1 * nx + a.0;
+    let goal = b.1 * nx + b.0;
+    prev[start] = start;
+    let mut queue = VecDeque::from([start]);
+    while let Some(c) = queue.pop_front() {
+        if c == goal {
+            break;
+        }
+        let (i, j) = (c % nx, c / nx);
+        let neighbours = [(i.wrapping_sub(1), j), (i + 1, j), (i, j.wrapping_sub(1)), (i, j + 1)];
+        for (x, y) in neighbours {
+            if x < nx && y < ny && grid.label(x, y) == label && prev[y * nx + x] == usize::MAX {
+                prev[y * nx + x] = c;
+                queue.push_back(y * nx + x);
+            }
+        }
+    }
+    if prev[goal] == usize::MAX {
+        return None;
+    }
+    let mut cells = vec![goal];
+    while *cells.last().expect("non-empty") != start {
+        cells.push(prev[*cells.last().expect("non-empty")]);
+    }
+    cells.reverse();
+    Some(cells.into_iter().map(|c| grid.center(c % nx, c / nx)).collect())
+}
+
+/// String pulling: keeps a point only where the straight line from the last kept one would leave
+/// the walkable component.
+fn simplify(grid: &FreeGrid, label: u32, path: &[DVec2]) -> Vec<DVec2> {
+    let visible = |a: DVec2, b: DVec2| {
+        let n = (a.distance(b) / 0.04).ceil().max(1.0) as usize;
+        (0..=n).all(|k| grid.component_at(a.lerp(b, k as f64 / n as f64), &label))
+    };
+    let mut out = vec![path[0]];
+    let mut i = 0;
+    while i + 1 < path.len() {
+        let mut j = path.len() - 1;
+        while j > i + 1 && !visible(path[i], path[j]) {
+            j -= 1;
+        }
+        out.push(path[j]);
+        i = j;
+    }
+    out
+}
+
+/// Moves a contact human off its ideal placement the way 3D-FRONT HUMAN's contact humans are off:
+/// sunk into furniture or floating beside it. Returns the applied translation.
+pub fn misplace(human: &mut Human, action: Action, rng: &mut Rng) -> DVec3 {
+    if !rng.chance(0.9) {
+        return DVec3::ZERO;
+    }
+    let yaw = crate::human::body_yaw(human, 0);
+    let f = facing(yaw);
+    let side = DVec2::new(f.y, -f.x);
+    let t = match action {
+        Action::Sit | Action::Lie => {
+            let xy = f * (0.14 * rng.normal()) + side * (0.1 * rng.normal());
+            xy.extend(rng.uniform(-0.16, 0.02))
+        }
+        _ => {
+            let xy = f * rng.uniform(-0.1, 0.14) + side * (0.05 * rng.normal());
+            xy.extend(0.05 * rng.normal())
+        }
+    };
+    translate(human, t);
+    t
+}
+
+/// Moves every frame of `human` by `t`.
+pub fn translate(human: &mut Human, t: DVec3) {
+    for frame in &mut human.frames {
+        for p in frame.iter_mut() {
+            *p = (DVec3::from(*p) + t).to_array().map(crate::human::round_mm);
+        }
+    }
+}
