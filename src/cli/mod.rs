@@ -3,6 +3,7 @@
 //! Commands print human text by default and JSON with `--json` on stdout; logs go to stderr.
 //! Only this module (and `main.rs`) uses anyhow; the library returns typed errors.
 
+mod calibrate;
 mod conditions;
 mod inspect;
 mod output;
@@ -73,6 +74,9 @@ pub enum Command {
     /// Procedural human-populated rooms (a 3D-FRONT HUMAN stand-in): DIR/{train,val,test}/*.json
     /// and DIR/stats.json.
     Synth(synth::SynthArgs),
+    /// SHADE's calibration: fix misplaced contact humans, augment actions and orientations;
+    /// writes the calibrated dataset and a before/after report.
+    Calibrate(calibrate::CalibrateArgs),
 }
 
 /// How the process ends.
@@ -102,6 +106,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
         Command::Inspect(args) => inspect::run(args, &cli.global),
         Command::Conditions(args) => conditions::run(args, &cli.global),
         Command::Synth(args) => synth::run(args, &cli.global),
+        Command::Calibrate(args) => calibrate::run(args, &cli.global),
     };
     match result {
         Err(e) if output::is_broken_pipe(&e) => Ok(ExitStatus::Success),

@@ -6,6 +6,8 @@
 //! dataset reproduces 3D-FRONT HUMAN's known defect (contact humans sunk into or floating beside
 //! their furniture); calibration fixes it. Everything is deterministic for a seed.
 
+mod calibrate;
+mod calibrate_dataset;
 mod error;
 mod floor_gen;
 pub mod layout;
@@ -16,6 +18,10 @@ mod stats;
 mod synth;
 mod threedfront;
 
+pub use calibrate::{
+    HumanCalibration, MAX_TRANSLATION, SAFE_PENETRATION, SceneCalibration, calibrate_scene, contact_object, iou_target,
+};
+pub use calibrate_dataset::{CalibrationReport, Unfixable, calibrate_dataset, read_stats};
 pub use error::DataError;
 pub use floor_gen::{Shape, area_range, sample_floor};
 pub use people::{WALK_FPS, contact_pose, misplace, translate};

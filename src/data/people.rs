@@ -31,11 +31,26 @@ fn adult(rng: &mut Rng) -> f64 {
 pub fn contact_pose(piece: &Placed, action: Action, slot: f64, rng: &mut Rng) -> Option<(Body, Pose)> {
     let b = &piece.obox;
     let surface = template_of(piece.category, b).surface?;
-    let stature = if piece.category == Category::KidsBed { rng.uniform(1.1, 1.5) } else { adult(rng) };
+    let ext = surface.extent();
+    let sofa_bed = action == Action::Lie && piece.category.group() == Group::Sofa;
+    let stature = match piece.category {
+        Category::KidsBed => rng.uniform(1.1, 1.5),
+        _ if sofa_bed => adult(rng).min(ext.x - 0.02),
+        _ => adult(rng),
+    };
+    if stature < 1.4 && sofa_bed {
+        return None;
+    }
     let body = Body::new(stature);
     let to_world = |l: DVec2| b.to_world(l.extend(0.0)).truncate();
-    let ext = surface.extent();
     let pose = match (action, piece.category.group()) {
+        (Action::Lie, Group::Sofa) => {
+            // Along the seat, head at the local −x end, feet towards +x.
+            let mid = (surface.min + surface.max) * 0.5;
+            let at = to_world(DVec2::new(surface.min.x + 0.04 + 0.45 * stature, mid.y));
+            let dir = b.to_world(DVec3::X).truncate() - b.center.truncate();
+            lie(&body, at, surface.height, yaw_facing(dir))
+        }
         (Action::Lie, _) => {
             let head_room = 0.12 + 0.45 * stature;
             if ext.y < head_room + 0.55 * stature - 0.05 || ext.x < 0.5 {
@@ -58,7 +73,7 @@ pub fn contact_pose(piece: &Placed, action: Action, slot: f64, rng: &mut Rng) ->
                 return None;
             }
             let x = (surface.min.x + surface.max.x) * 0.5 + slot * (ext.x * 0.5 - 0.3).max(0.0);
-            sit(&body, to_world(DVec2::new(x, surface.min.y + 0.19)), surface.height, b.yaw)
+            sit(&body, to_world(DVec2::new(x, surface.min.y + 0.15)), surface.height, b.yaw)
         }
         (Action::Touch, _) => {
             let x = rng.uniform(-0.3, 0.3) * b.size.x;
@@ -98,7 +113,9 @@ pub fn contact_humans(layout: &Layout, objects: &[Object], rng: &mut Rng) -> Vec
     let mut chosen: Vec<usize> =
         candidates.iter().copied().filter(|&i| rng.chance(probability(&layout.placed[i]))).collect();
     if chosen.is_empty() && !candidates.is_empty() {
-        chosen.push(candidates[rng.index(candidates.len())]);
+        // At least one contact human per room, preferably sitting or lying.
+        let weights: Vec<f64> = candidates.iter().map(|&i| probability(&layout.placed[i])).collect();
+        chosen.push(candidates[rng.weighted(&weights)]);
     }
     for i in chosen {
         let piece = &layout.placed[i];
@@ -132,7 +149,8 @@ fn probability(p: &Placed) -> f64 {
         Group::Bed => 0.85,
         Group::Sofa => 0.7,
         Group::Chair | Group::Stool => 0.45,
-        _ => 0.35,
+        // Touching humans are the minority in 3D-FRONT HUMAN, whose contact humans mostly sit and lie.
+        _ => 0.06,
     }
 }
 
@@ -238,7 +256,10 @@ fn simplify(grid: &FreeGrid, label: u32, path: &[DVec2]) -> Vec<DVec2> {
 
 /// Moves a contact human off its ideal placement the way 3D-FRONT HUMAN's contact humans are off:
 /// sunk into furniture or floating beside it. Returns the applied translation.
-pub fn misplace(human: &mut Human, action: Action, rng: &mut Rng) -> DVec3 {
+///
+/// `extent` is the larger side of the piece's footprint: on a big piece the misplacement is larger,
+/// as a small offset would leave the contact box on the piece.
+pub fn misplace(human: &mut Human, action: Action, extent: f64, rng: &mut Rng) -> DVec3 {
     if !rng.chance(0.9) {
         return DVec3::ZERO;
     }
@@ -247,8 +268,10 @@ pub fn misplace(human: &mut Human, action: Action, rng: &mut Rng) -> DVec3 {
     let side = DVec2::new(f.y, -f.x);
     let t = match action {
         Action::Sit | Action::Lie => {
-            let xy = f * (0.14 * rng.normal()) + side * (0.1 * rng.normal());
-            xy.extend(rng.uniform(-0.16, 0.02))
+            let reach = 0.15 + 0.3 * extent;
+            let angle = rng.uniform(0.0, std::f64::consts::TAU);
+            let xy = (f * angle.cos() + side * angle.sin()) * rng.uniform(0.0, reach);
+            xy.extend(rng.uniform(-0.18, 0.03))
         }
         _ => {
             let xy = f * rng.uniform(-0.1, 0.14) + side * (0.05 * rng.normal());

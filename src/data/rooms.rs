@@ -188,7 +188,8 @@ pub fn generate_room(room: RoomType, seed: u64, index: u64, raw: bool) -> RoomRe
     let mut contact_objects = Vec::new();
     for (k, (action, object, mut human)) in contact.into_iter().enumerate() {
         if raw {
-            misplace(&mut human, action, &mut rng);
+            let size = scene.objects[object].size;
+            misplace(&mut human, action, size[0].max(size[1]), &mut rng);
         }
         human.id = format!("h{k}");
         contact_objects.push(object);

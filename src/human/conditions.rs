@@ -6,8 +6,9 @@
 //! - Contact boxes: one oriented box per contact span, yawed like the body (from the hip line).
 //!   For sit and lie the box is the *support volume*: the footprint of the resting parts (pelvis and
 //!   thighs; the whole body) and the 10 cm just below their lowest surface, where a seat or mattress
-//!   must be. For touch it is a 12 cm cube centred on the palm, half of which lies inside a touched
-//!   surface. So a well-supported human has contact IoU ≈ 1 (sit, lie) or ≈ 0.5 (touch).
+//!   must be. For touch it is a 12 cm cube just past the palm along the forearm: the volume the
+//!   hand presses on. So a well-supported human has contact IoU ≈ 1, touching ones ≥ 0.5 whatever
+//!   the angle of the arm.
 //! - Floor plan: points on the boundary with outward normals, then interior grid points, relative
 //!   to the window centre, in a fixed count for a PointNet.
 //!
@@ -156,7 +157,18 @@ fn contact_box(human: &Human, span: &ActionSpan) -> Option<ContactBox> {
             let names = ["pelvis", "left_hip", "right_hip", "left_knee", "right_knee"];
             let joints: Vec<usize> = names.iter().filter_map(|n| s.joint(n)).collect();
             let r = radius_between(s, &joints).unwrap_or(0.07);
-            support_box(human, span, &joints.iter().map(|&j| (j, r)).collect::<Vec<_>>(), yaw)
+            // Buttocks and the back of the thighs rest on the seat; the knees overhang its edge,
+            // so a third of each thigh counts.
+            let (Some(lh), Some(lk), Some(rh), Some(rk), Some(p)) =
+                (s.joint("left_hip"), s.joint("left_knee"), s.joint("right_hip"), s.joint("right_knee"), s.joint("pelvis"))
+            else {
+                return None;
+            };
+            let points = |f: usize| {
+                let at = |j| human.joint_at(f, j);
+                vec![at(p), at(lh), at(rh), at(lh).lerp(at(lk), SEATED_THIGH), at(rh).lerp(at(rk), SEATED_THIGH)]
+            };
+            support_box_of(span, &points, r, yaw)
         }
         Action::Lie => {
             let parts: Vec<(usize, f64)> = (0..s.joints.len()).map(|j| (j, radius_at(s, j))).collect();
@@ -169,6 +181,33 @@ fn contact_box(human: &Human, span: &ActionSpan) -> Option<ContactBox> {
         Action::Walk | Action::Stand => return None,
     };
     Some(ContactBox { human: human.id.clone(), action: span.action, frames: [span.start, span.end], obox })
+}
+
+/// Fraction of the thigh (hip → knee) that rests on a seat.
+pub const SEATED_THIGH: f64 = 0.35;
+
+/// The support volume under `points(frame)` (each inflated by `r`) over the span's frames.
+fn support_box_of(span: &ActionSpan, points: &dyn Fn(usize) -> Vec<DVec3>, r: f64, yaw: f64) -> OBox {
+    let (sn, cs) = yaw.sin_cos();
+    let mut lo = DVec2::splat(f64::INFINITY);
+    let mut hi = DVec2::splat(f64::NEG_INFINITY);
+    let mut bottom = f64::INFINITY;
+    for f in span_frames(span) {
+        for p in points(f) {
+            let l = DVec2::new(cs * p.x + sn * p.y, -sn * p.x + cs * p.y);
+            lo = lo.min(l - r);
+            hi = hi.max(l + r);
+            bottom = bottom.min(p.z - r);
+        }
+    }
+    support_obox(lo, hi, bottom, yaw)
+}
+
+fn support_obox(lo: DVec2, hi: DVec2, bottom: f64, yaw: f64) -> OBox {
+    let (sn, cs) = yaw.sin_cos();
+    let mid = (lo + hi) * 0.5;
+    let center = DVec2::new(cs * mid.x - sn * mid.y, sn * mid.x + cs * mid.y);
+    OBox::new(center.extend(bottom - SUPPORT_DEPTH * 0.5), (hi - lo).extend(SUPPORT_DEPTH), yaw)
 }
 
 /// The support volume under the listed (joint, radius) parts over the span's frames.
@@ -187,13 +226,11 @@ fn support_box(human: &Human, span: &ActionSpan, parts: &[(usize, f64)], yaw: f6
             bottom = bottom.min(p.z - r);
         }
     }
-    let mid = (lo + hi) * 0.5;
-    let center = DVec2::new(cs * mid.x - sn * mid.y, sn * mid.x + cs * mid.y);
-    let size = (hi - lo).extend(SUPPORT_DEPTH);
-    OBox::new(center.extend(bottom - SUPPORT_DEPTH * 0.5), size, yaw)
+    support_obox(lo, hi, bottom, yaw)
 }
 
-/// Mean palm position of the hand that reaches furthest forward during the span.
+/// Centre of the touch box of the hand that reaches furthest forward during the span: half a box
+/// past the palm along the forearm, averaged over the span.
 fn touching_palm(human: &Human, span: &ActionSpan) -> Option<DVec3> {
     let s = &human.skeleton;
     let pelvis = s.joint("pelvis")?;
@@ -204,6 +241,12 @@ fn touching_palm(human: &Human, span: &ActionSpan) -> Option<DVec3> {
         let e = human.joint_at(f, s.joint(&format!("{side}_elbow"))?);
         let w = human.joint_at(f, s.joint(&format!("{side}_wrist"))?);
         Some(w + (w - e) * HAND_PER_FOREARM)
+    };
+    // The volume the hand presses on: half a cube past the palm, along the forearm.
+    let pressed = |side: &str, f: usize| -> Option<DVec3> {
+        let e = human.joint_at(f, s.joint(&format!("{side}_elbow"))?);
+        let p = palm(side, f)?;
+        Some(p + (p - e).normalize_or(DVec3::NEG_Z) * (TOUCH_SIDE * 0.5))
     };
     let reach = |side: &str| -> Option<f64> {
         let p = palm(side, mid)?;
@@ -222,7 +265,7 @@ fn touching_palm(human: &Human, span: &ActionSpan) -> Option<DVec3> {
         (None, None) => return None,
     };
     let frames: Vec<usize> = span_frames(span).collect();
-    let sum = frames.iter().filter_map(|&f| palm(side, f)).fold(DVec3::ZERO, |a, p| a + p);
+    let sum = frames.iter().filter_map(|&f| pressed(side, f)).fold(DVec3::ZERO, |a, p| a + p);
     Some(sum / frames.len() as f64)
 }
 

@@ -137,8 +137,8 @@ pub fn sit(body: &Body, at: DVec2, seat_height: f64, yaw: f64) -> Pose {
     let mut p = Pose([DVec3::ZERO; 19]);
     let hips_z = 0.0;
     p.set(Joint::Pelvis, DVec3::new(0.0, -0.01 * h, hips_z + body.pelvis_above_hips()));
-    // Upper body leaning back 8° about the hip line.
-    let lean = 8f64.to_radians();
+    // Upper body leaning back 4° about the hip line.
+    let lean = 4f64.to_radians();
     let up = DVec3::new(0.0, -lean.sin(), lean.cos());
     let stand = stand_local(body);
     let pelvis0 = stand.get(Joint::Pelvis);

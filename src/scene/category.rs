@@ -144,7 +144,7 @@ pub enum Group {
     Chair,
     /// Stools: sit.
     Stool,
-    /// Sofas of every shape: sit.
+    /// Sofas of every shape: sit (and lie, after calibration's category augmentation).
     Sofa,
     /// Tables and desks: touch.
     Table,
@@ -161,7 +161,8 @@ impl Category {
     pub fn affordances(self) -> &'static [Action] {
         match self.group() {
             Group::Bed => &[Action::Lie, Action::Sit],
-            Group::Chair | Group::Stool | Group::Sofa => &[Action::Sit],
+            Group::Sofa => &[Action::Sit, Action::Lie],
+            Group::Chair | Group::Stool => &[Action::Sit],
             Group::Table | Group::Cabinet | Group::Shelf => &[Action::Touch],
             Group::Lamp => &[],
         }
@@ -173,11 +174,13 @@ impl Category {
     }
 
     /// Probability that a contact human on this category does `action` in the MIME mapping
-    /// (beds: lie 0.6, sit 0.4; everything else: its single action).
+    /// (beds: lie 0.6, sit 0.4; sofas: sit — people lie on sofas only after calibration's category
+    /// augmentation; everything else: its single action).
     pub fn affordance_probability(self, action: Action) -> f64 {
         match (self.group(), action) {
             (Group::Bed, Action::Lie) => 0.6,
             (Group::Bed, Action::Sit) => 0.4,
+            (Group::Sofa, Action::Lie) => 0.0,
             _ if self.affords(action) => 1.0,
             _ => 0.0,
         }

@@ -51,7 +51,12 @@ fn touch_box_is_a_cube_on_the_palm() {
     scene.humans.push(one(touch(&body, target, 1.2, Side::Left), Action::Touch, "h0"));
     let c = Conditions::of(&scene);
     let b = &c.contact_boxes[0];
-    assert!(b.obox.center.distance(target) < 2e-3, "{:?}", b.obox.center);
+    // Half a box past the palm, along the forearm.
+    let h = &scene.humans[0];
+    let (elbow, wrist) = (h.joint_at(0, 14), h.joint_at(0, 15));
+    let dir = (wrist - elbow).normalize();
+    let expected = target + dir * (TOUCH_SIDE * 0.5);
+    assert!(b.obox.center.distance(expected) < 2e-3, "{:?} vs {expected:?}", b.obox.center);
     assert_eq!(b.obox.size, DVec3::splat(TOUCH_SIDE));
 }
 

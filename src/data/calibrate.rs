@@ -1,0 +1,283 @@
+//! SHADE's calibration of contact humans: translation modification, category augmentation and
+//! orientation augmentation.
+//!
+//! - Translation modification: for each contact human, find its contact object (the piece that
+//!   affords its action and covers its contact box most, else the nearest such piece within 2 m),
+//!   compute the translation that puts the contact box onto the piece (sit, lie: the support volume
+//!   right under the template's seat or mattress surface; touch: the palm on the nearest face), then
+//!   search small corrections around it until E_pen is below [`SAFE_PENETRATION`] and the contact
+//!   IoU reaches 0.9 (sit, lie) or 0.5 (touch). Translations beyond ±2 m are refused; humans that
+//!   cannot be fixed are reported and left as they were.
+//! - Category augmentation: half of the contact humans whose piece affords another action are
+//!   replaced by that action (lying ↔ sitting on beds; sitting → lying on sofas long enough).
+//! - Orientation augmentation: every contact human turns by a random yaw (σ = 10°) about its pelvis,
+//!   then translation modification runs again.
+
+use super::Rng;
+use super::layout::Placed;
+use super::people::{contact_pose, translate};
+use crate::eval::{FurnitureField, contact_iou};
+use crate::furniture::template;
+use crate::geom::OBox;
+use crate::human::{Motion, SurfaceSampler, contact_boxes, round_mm};
+use crate::scene::{Action, Group, Human, Object, Scene};
+use glam::{DVec2, DVec3};
+use serde::{Deserialize, Serialize};
+
+/// E_pen (Σ metres over ≈ 1,000 surface points) below which a contact human counts as resting, not
+/// sunk.
+pub const SAFE_PENETRATION: f64 = 0.5;
+/// Largest translation searched, per axis.
+pub const MAX_TRANSLATION: f64 = 2.0;
+/// Surface points used while searching (the final figures use 1,000).
+const SEARCH_POINTS: usize = 250;
+
+/// The contact IoU a fixed human must reach.
+pub fn iou_target(action: Action) -> f64 {
+    if action == Action::Touch { 0.5 } else { 0.9 }
+}
+
+/// What calibration did to one contact human.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct HumanCalibration {
+    /// The human's id.
+    pub human: String,
+    /// Its action before calibration.
+    pub action_before: Action,
+    /// Its action after (differs when category augmentation replaced it).
+    pub action: Action,
+    /// Id of its contact object, if one was found.
+    pub object: Option<String>,
+    /// E_pen before and after.
+    pub penetration: [f64; 2],
+    /// Contact IoU before and after.
+    pub iou: [f64; 2],
+    /// The final translation applied.
+    pub translation: [f64; 3],
+    /// Whether the human now rests within the bounds (E_pen and IoU targets met).
+    pub fixed: bool,
+    /// Why not, when not.
+    pub problem: Option<String>,
+}
+
+/// A calibrated scene and what happened to each contact human.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneCalibration {
+    /// The calibrated scene.
+    pub scene: Scene,
+    /// One record per contact human, in scene order.
+    pub humans: Vec<HumanCalibration>,
+}
+
+struct Judge<'a> {
+    field: FurnitureField,
+    objects: &'a [Object],
+}
+
+impl Judge<'_> {
+    fn contact(&self, h: &Human) -> Option<(Action, OBox)> {
+        contact_boxes(h).first().map(|b| (b.action, b.obox))
+    }
+
+}
+
+/// The piece a contact box belongs to: the affording piece covering it most, else the nearest one
+/// within 2 m.
+pub fn contact_object(objects: &[Object], action: Action, b: &OBox) -> Option<usize> {
+    let affording: Vec<usize> = (0..objects.len()).filter(|&i| objects[i].category.affords(action)).collect();
+    let cover = |i: &usize| crate::geom::intersection_volume(b, &objects[*i].obox());
+    if let Some(&best) = affording.iter().filter(|i| cover(i) > 0.0).max_by(|x, y| cover(x).total_cmp(&cover(y))) {
+        return Some(best);
+    }
+    let dist = |i: &usize| objects[*i].obox().footprint_signed_distance(b.center.truncate());
+    affording.into_iter().filter(|i| dist(i) <= MAX_TRANSLATION).min_by(|x, y| dist(x).total_cmp(&dist(y)))
+}
+
+/// The translation that puts a contact box onto its piece (before the local search).
+fn target_translation(b: &OBox, action: Action, object: &Object) -> Option<DVec3> {
+    let ob = object.obox();
+    match action {
+        Action::Sit | Action::Lie => {
+            let s = template(object).surface?;
+            let dz = s.height - b.z_range().1;
+            let corners: Vec<DVec2> = b.footprint().iter().map(|c| ob.to_local(c.extend(0.0)).truncate()).collect();
+            let lo = corners.iter().fold(DVec2::splat(f64::INFINITY), |m, &c| m.min(c));
+            let hi = corners.iter().fold(DVec2::splat(f64::NEG_INFINITY), |m, &c| m.max(c));
+            // Inside the piece's footprint (the contact IoU's reference), on its surface.
+            let margin = 0.02;
+            let half = ob.half().truncate();
+            let (rmin, rmax) = (-half + margin, half - margin);
+            let axis = |lo: f64, hi: f64, rmin: f64, rmax: f64| {
+                if hi - lo > rmax - rmin {
+                    (rmin + rmax) * 0.5 - (lo + hi) * 0.5
+                } else {
+                    (rmin - lo).max(0.0) + (rmax - hi).min(0.0)
+                }
+            };
+            let local = DVec2::new(axis(lo.x, hi.x, rmin.x, rmax.x), axis(lo.y, hi.y, rmin.y, rmax.y));
+            let world = ob.to_world(local.extend(0.0)) - ob.to_world(DVec3::ZERO);
+            Some(world.truncate().extend(dz))
+        }
+        Action::Touch => {
+            let q = ob.to_local(b.center);
+            let h = ob.half();
+            let mut s = q.clamp(-h, h);
+            let inside = q.abs().cmple(h).all();
+            if inside {
+                // Out through the nearest face.
+                let gap = h - q.abs();
+                let a = if gap.x <= gap.y && gap.x <= gap.z { 0 } else if gap.y <= gap.z { 1 } else { 2 };
+                s[a] = h[a] * q[a].signum();
+            }
+            // The face the point lies on; the pressed volume goes just inside it (the palm on the
+            // face when the forearm meets it square).
+            let rel = (s / h).abs();
+            let a = if rel.x >= rel.y && rel.x >= rel.z { 0 } else if rel.y >= rel.z { 1 } else { 2 };
+            s[a] -= (b.size[a] * 0.5 + 0.005).min(h[a]) * s[a].signum();
+            Some(ob.to_world(s) - b.center)
+        }
+        Action::Walk | Action::Stand => None,
+    }
+}
+
+/// Translation modification of one human against `objects` (the human is moved in place).
+/// Returns (object index, translation applied, fixed, problem).
+fn fix_translation(h: &mut Human, judge: &Judge) -> (Option<usize>, DVec3, bool, Option<String>) {
+    let Some((action, b)) = judge.contact(h) else { return (None, DVec3::ZERO, false, Some("no contact box".into())) };
+    let Some(obj) = contact_object(judge.objects, action, &b) else {
+        return (None, DVec3::ZERO, false, Some(format!("no piece that affords {action} within 2 m")));
+    };
+    let Some(base) = target_translation(&b, action, &judge.objects[obj]) else {
+        return (Some(obj), DVec3::ZERO, false, Some("the piece has no surface".into()));
+    };
+    // Surface points of the contact frame, sampled once: a translation moves them rigidly.
+    let f = h.contact_spans().next().map_or(0, |s| (s.start + s.end) / 2);
+    let joints: Vec<DVec3> = h.frame(f).collect();
+    let sampler = SurfaceSampler::new(&h.skeleton, &joints, SEARCH_POINTS);
+    let points = sampler.points(&h.skeleton, &joints);
+    let scale = crate::eval::SURFACE_POINTS as f64 / points.len().max(1) as f64;
+    let penetration = |t: DVec3| -> f64 {
+        points.iter().map(|&p| judge.field.signed_distance(p + t)).filter(|&d| d < 0.0).map(|d| -d).sum::<f64>() * scale
+    };
+    let iou = |t: DVec3| contact_iou(&OBox::new(b.center + t, b.size, b.yaw), judge.objects);
+    // Corrections around the target, nearest first: 3 cm steps within ±0.3 m, then 6 cm steps
+    // within ±1 m, each at three heights.
+    let ob = judge.objects[obj].obox();
+    let mut offsets: Vec<DVec3> = Vec::new();
+    for (step, n) in [(0.03, 10i32), (0.06, 16)] {
+        for i in -n..=n {
+            for j in -n..=n {
+                let local = DVec2::new(i as f64 * step, j as f64 * step);
+                let xy = (ob.to_world(local.extend(0.0)) - ob.to_world(DVec3::ZERO)).truncate();
+                for k in 0..3 {
+                    offsets.push(xy.extend(k as f64 * 0.01));
+                }
+            }
+        }
+    }
+    offsets.sort_by(|a, c| a.length_squared().total_cmp(&c.length_squared()));
+    let candidates: Vec<DVec3> = offsets
+        .into_iter()
+        .map(|d| base + d)
+        .filter(|t| t.abs().max_element() <= MAX_TRANSLATION)
+        .filter(|&t| iou(t) >= iou_target(action))
+        .collect();
+    // First a resting placement (a tenth of the bound), then one within the bound.
+    for bound in [0.1 * SAFE_PENETRATION, SAFE_PENETRATION] {
+        if let Some(&t) = candidates.iter().find(|&&t| penetration(t) < bound) {
+            translate(h, t);
+            return (Some(obj), t, true, None);
+        }
+    }
+    (Some(obj), DVec3::ZERO, false, Some("no translation within ±2 m meets the E_pen and IoU bounds".into()))
+}
+
+/// Turns a human by `yaw` about the vertical through its pelvis (first frame).
+fn turn(h: &mut Human, yaw: f64) {
+    let Some(p) = h.skeleton.joint("pelvis") else { return };
+    let pivot = h.joint_at(0, p).truncate();
+    let (s, c) = yaw.sin_cos();
+    for frame in &mut h.frames {
+        for q in frame.iter_mut() {
+            let d = DVec2::new(q[0], q[1]) - pivot;
+            let r = pivot + DVec2::new(c * d.x - s * d.y, s * d.x + c * d.y);
+            *q = [round_mm(r.x), round_mm(r.y), q[2]];
+        }
+    }
+}
+
+/// The other action a piece affords for category augmentation, if any.
+fn alternative(object: &Object, action: Action) -> Option<Action> {
+    match (object.category.group(), action) {
+        (Group::Bed, Action::Lie) => Some(Action::Sit),
+        (Group::Bed, Action::Sit) => Some(Action::Lie),
+        (Group::Sofa, Action::Sit) if object.size[0] >= 1.6 => Some(Action::Lie),
+        _ => None,
+    }
+}
+
+/// Calibrates one scene; `rng` drives the augmentations.
+pub fn calibrate_scene(scene: &Scene, rng: &mut Rng) -> SceneCalibration {
+    let judge = Judge { field: FurnitureField::new(&scene.objects), objects: &scene.objects };
+    let mut out = scene.clone();
+    let mut records = Vec::new();
+    for h in out.humans.iter_mut() {
+        let Some((action_before, b)) = judge.contact(h) else { continue };
+        let before = (crate::eval::human_penetration(h, &judge.field), contact_iou(&b, &scene.objects));
+        let original = h.clone();
+        // 1. Translation modification.
+        let (mut object, mut t, mut fixed, mut problem) = fix_translation(h, &judge);
+        let mut action = action_before;
+        // 2. Category augmentation on half of the humans whose piece affords another action.
+        if let Some(o) = object.filter(|_| fixed)
+            && let Some(alt) = alternative(&scene.objects[o], action)
+            && rng.chance(0.5)
+        {
+            let piece = Placed { category: scene.objects[o].category, obox: scene.objects[o].obox(), access: Vec::new(), anchor: None };
+            if let Some((body, pose)) = contact_pose(&piece, alt, rng.uniform(-1.0, 1.0), rng) {
+                let mut m = Motion::new(body, h.fps);
+                m.hold(pose, 1, alt);
+                let mut replaced = m.into_human(h.id.clone());
+                let (o2, t2, ok, _) = fix_translation(&mut replaced, &judge);
+                if ok && o2 == Some(o) {
+                    *h = replaced;
+                    action = alt;
+                    t = t2;
+                }
+            }
+        }
+        // 3. Orientation augmentation, then translation modification again.
+        if fixed {
+            let kept = h.clone();
+            turn(h, (10.0 * rng.normal()).to_radians());
+            let (o3, t3, ok, p3) = fix_translation(h, &judge);
+            if ok {
+                object = o3;
+                t += t3;
+            } else {
+                *h = kept;
+                problem = p3.map(|p| format!("after turning: {p}"));
+            }
+        } else {
+            *h = original;
+        }
+        let after_box = judge.contact(h).map(|(_, b)| b);
+        let after = (
+            crate::eval::human_penetration(h, &judge.field),
+            after_box.map_or(0.0, |b| contact_iou(&b, &scene.objects)),
+        );
+        fixed = fixed && after.0 < SAFE_PENETRATION * 1.5 && after.1 >= iou_target(action) - 1e-9;
+        records.push(HumanCalibration {
+            human: h.id.clone(),
+            action_before,
+            action,
+            object: object.map(|o| scene.objects[o].id.clone()),
+            penetration: [before.0, after.0],
+            iou: [before.1, after.1],
+            translation: t.to_array().map(round_mm),
+            fixed,
+            problem: if fixed { None } else { problem.or(Some("bounds not met after augmentation".into())) },
+        });
+    }
+    SceneCalibration { scene: out, humans: records }
+}
