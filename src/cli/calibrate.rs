@@ -41,7 +41,9 @@ pub fn run(args: &CalibrateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStat
 pub fn table(r: &CalibrationReport) -> String {
     let ratio = r.penetration[0] / r.penetration[1].max(1e-9);
     let mut t = String::new();
-    t.push_str("room      scenes  contact humans  fixed   E_pen raw → calibrated        contact IoU raw → calibrated\n");
+    t.push_str(
+        "room      scenes  contact humans  fixed   E_pen raw → calibrated        contact IoU raw → calibrated\n",
+    );
     t.push_str(&format!(
         "{:<9} {:>6}  {:>14}  {:>5}   {:>7.2} → {:<6.2} ({:>5.1}× less)   {:.3} → {:.3}\n",
         r.room_type.name(),

@@ -78,7 +78,6 @@ impl Judge<'_> {
     fn contact(&self, h: &Human) -> Option<(Action, OBox)> {
         contact_boxes(h).first().map(|b| (b.action, b.obox))
     }
-
 }
 
 /// The piece a contact box belongs to: the affording piece covering it most, else the nearest one
@@ -126,13 +125,25 @@ fn target_translation(b: &OBox, action: Action, object: &Object) -> Option<DVec3
             if inside {
                 // Out through the nearest face.
                 let gap = h - q.abs();
-                let a = if gap.x <= gap.y && gap.x <= gap.z { 0 } else if gap.y <= gap.z { 1 } else { 2 };
+                let a = if gap.x <= gap.y && gap.x <= gap.z {
+                    0
+                } else if gap.y <= gap.z {
+                    1
+                } else {
+                    2
+                };
                 s[a] = h[a] * q[a].signum();
             }
             // The face the point lies on; the pressed volume goes just inside it (the palm on the
             // face when the forearm meets it square).
             let rel = (s / h).abs();
-            let a = if rel.x >= rel.y && rel.x >= rel.z { 0 } else if rel.y >= rel.z { 1 } else { 2 };
+            let a = if rel.x >= rel.y && rel.x >= rel.z {
+                0
+            } else if rel.y >= rel.z {
+                1
+            } else {
+                2
+            };
             s[a] -= (b.size[a] * 0.5 + 0.005).min(h[a]) * s[a].signum();
             Some(ob.to_world(s) - b.center)
         }
@@ -233,7 +244,12 @@ pub fn calibrate_scene(scene: &Scene, rng: &mut Rng) -> SceneCalibration {
             && let Some(alt) = alternative(&scene.objects[o], action)
             && rng.chance(0.5)
         {
-            let piece = Placed { category: scene.objects[o].category, obox: scene.objects[o].obox(), access: Vec::new(), anchor: None };
+            let piece = Placed {
+                category: scene.objects[o].category,
+                obox: scene.objects[o].obox(),
+                access: Vec::new(),
+                anchor: None,
+            };
             if let Some((body, pose)) = contact_pose(&piece, alt, rng.uniform(-1.0, 1.0), rng) {
                 let mut m = Motion::new(body, h.fps);
                 m.hold(pose, 1, alt);

@@ -77,7 +77,12 @@ pub fn read_stats(dir: &Path) -> Result<DatasetStats, DataError> {
 /// # Errors
 /// [`DataError`] for a missing or bad dataset, a bad scene, or a write failure. Files already
 /// written stay complete (each is written atomically).
-pub fn calibrate_dataset(src: &Path, out: &Path, command: &str, progress: &(dyn Fn(usize, usize) + Sync)) -> Result<CalibrationReport, DataError> {
+pub fn calibrate_dataset(
+    src: &Path,
+    out: &Path,
+    command: &str,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<CalibrationReport, DataError> {
     let stats = read_stats(src)?;
     let mut jobs: Vec<(&str, PathBuf)> = Vec::new();
     for split in DatasetStats::SPLITS {

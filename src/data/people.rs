@@ -73,7 +73,10 @@ pub fn contact_pose(piece: &Placed, action: Action, slot: f64, rng: &mut Rng) ->
                 return None;
             }
             let x = (surface.min.x + surface.max.x) * 0.5 + slot * (ext.x * 0.5 - 0.3).max(0.0);
-            sit(&body, to_world(DVec2::new(x, surface.min.y + 0.15)), surface.height, b.yaw)
+            // Back against the backrest, unless the seat is deeper than the thighs are long: then
+            // forward until the knees clear the front edge (the lower legs hang in front of it).
+            let y = (surface.min.y + 0.15).max(surface.max.y - body.thigh() + 0.07);
+            sit(&body, to_world(DVec2::new(x, y)), surface.height, b.yaw)
         }
         (Action::Touch, _) => {
             let x = rng.uniform(-0.3, 0.3) * b.size.x;
@@ -182,21 +185,32 @@ pub fn walkers(layout: &Layout, contact: &[Human], count: usize, rng: &mut Rng) 
         return Vec::new();
     }
     let mut out = Vec::new();
-    for _ in 0..count * 6 {
+    for attempt in 0..count * 15 {
         if out.len() == count {
             break;
         }
+        // Prefer paths of at least 2 m; accept shorter ones in cramped rooms.
+        let min_length = if attempt < count * 8 { 2.0 } else { 0.5 };
         let a = cells[rng.index(cells.len())];
         let b = cells[rng.index(cells.len())];
         let Some(path) = shortest_path(&grid, main, a, b) else { continue };
         let points = simplify(&grid, main, &path);
         let Some(line) = Polyline::new(points) else { continue };
-        if line.length() < 2.0 {
+        if line.length() < min_length {
             continue;
         }
         let body = Body::new(adult(rng));
         let mut m = Motion::new(body, WALK_FPS);
         m.walk(&line, rng.uniform(1.0, 1.4));
+        out.push(m.into_human(String::new()));
+    }
+    if out.is_empty() {
+        // Too cramped to walk: someone stands in the free floor instead (their feet still mark it).
+        let (i, j) = cells[rng.index(cells.len())];
+        let body = Body::new(adult(rng));
+        let yaw = std::f64::consts::FRAC_PI_2 * rng.index(4) as f64;
+        let mut m = Motion::new(body, WALK_FPS);
+        m.hold(crate::human::stand(&body, grid.center(i, j), yaw), 10, Action::Stand);
         out.push(m.into_human(String::new()));
     }
     out

@@ -133,7 +133,7 @@ pub fn template_of(category: Category, obox: &OBox) -> Template {
         }
         Group::Sofa => {
             let seat = sofa_seat(h);
-            let back = (0.2 * d).clamp(0.1, 0.25).min(0.4 * d);
+            let back = (0.25 * d).clamp(0.12, 0.3).min(0.4 * d);
             let arm = (0.1 * w).clamp(0.08, 0.2).min(0.2 * w);
             let arm_h = (seat + 0.2).min(h);
             b.part(PartRole::Seat, [w - 2.0 * arm, d - back, seat], [0.0, back * 0.5, 0.0]);

@@ -159,9 +159,13 @@ fn contact_box(human: &Human, span: &ActionSpan) -> Option<ContactBox> {
             let r = radius_between(s, &joints).unwrap_or(0.07);
             // Buttocks and the back of the thighs rest on the seat; the knees overhang its edge,
             // so a third of each thigh counts.
-            let (Some(lh), Some(lk), Some(rh), Some(rk), Some(p)) =
-                (s.joint("left_hip"), s.joint("left_knee"), s.joint("right_hip"), s.joint("right_knee"), s.joint("pelvis"))
-            else {
+            let (Some(lh), Some(lk), Some(rh), Some(rk), Some(p)) = (
+                s.joint("left_hip"),
+                s.joint("left_knee"),
+                s.joint("right_hip"),
+                s.joint("right_knee"),
+                s.joint("pelvis"),
+            ) else {
                 return None;
             };
             let points = |f: usize| {

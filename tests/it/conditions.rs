@@ -32,13 +32,15 @@ fn sitting_box_is_the_support_volume_under_pelvis_and_thighs() {
     let (z0, z1) = b.obox.z_range();
     assert!((z1 - 0.45).abs() < 1e-3, "top at the seat: {z1}");
     assert!((z1 - z0 - SUPPORT_DEPTH).abs() < 1e-9);
-    // Width: hips ± thigh radius, a bit wider at the knees; depth: from behind the pelvis to the knees.
-    assert!((0.25..0.45).contains(&b.obox.size.x), "{}", b.obox.size.x);
-    assert!((0.45..0.75).contains(&b.obox.size.y), "{}", b.obox.size.y);
-    // The box lies in front of the pelvis along the facing direction.
+    // By hand for 1.75 m: the pelvis–hip capsules (r = 0.0875) bound it; the pelvis sits 1.75 cm
+    // behind the hips, the knees 0.4284 m ahead and 1.75 cm wider, a third of the thigh counts:
+    // depth 0.0175 + 0.0875 + 0.35 × 0.4284 + 0.0875 = 0.3424, width 2 × (0.0875 + 0.35 × 0.0175
+    // + 0.0875) = 0.3623, centre 0.0662 ahead of the hips.
+    assert!((b.obox.size.x - 0.3623).abs() < 0.003, "{}", b.obox.size.x);
+    assert!((b.obox.size.y - 0.3424).abs() < 0.003, "{}", b.obox.size.y);
     let facing = DVec2::new(-yaw.sin(), yaw.cos());
     let ahead = (b.obox.center.truncate() - DVec2::new(2.0, 2.0)).dot(facing);
-    assert!((0.1..0.35).contains(&ahead), "{ahead}");
+    assert!((ahead - 0.0662).abs() < 0.003, "{ahead}");
     // No walking or standing frames: no free space.
     assert_eq!(c.free_space.count(), 0);
 }

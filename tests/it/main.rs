@@ -3,6 +3,7 @@
 mod bad_input;
 mod cli;
 mod conditions;
+mod data;
 mod examples;
 mod geom_props;
 mod scene_io;

@@ -1,0 +1,208 @@
+//! The procedural dataset and calibration: the figures they must follow, on hundreds of rooms.
+
+use crate::{shade_sim, stderr};
+use shade_sim::data::{
+    DatasetStats, Rng, SplitStats, calibrate_scene, generate_room, iou_target, kl_divergence, split_of,
+    target_frequencies,
+};
+use shade_sim::eval::{contact_iou, scene_penetration};
+use shade_sim::geom::{footprint_intersection_area, intersection_volume};
+use shade_sim::human::contact_boxes;
+use shade_sim::scene::{RoomType, validate};
+
+/// 500 rooms of each type: 3D-FRONT's category frequencies, clean layouts, afforded actions.
+#[test]
+fn five_hundred_rooms_follow_3d_front_and_the_rules() {
+    for room in RoomType::ALL {
+        let mut stats = SplitStats::default();
+        for i in 0..500 {
+            let record = generate_room(room, 11, i, false);
+            let s = &record.scene;
+            assert!(validate(s).is_empty(), "{room} {i}: {:?}", validate(s));
+            stats.add(s);
+            let n = s.objects.len();
+            assert!(n >= 3 && n <= room.max_objects(), "{room} {i}: {n} objects");
+            let floor = s.floor_plan.polygon();
+            let area = floor.area();
+            let (lo, hi, _) = shade_sim::data::area_range(room);
+            assert!(area >= lo && area <= hi, "{room} {i}: area {area}");
+            for (a, o) in s.objects.iter().enumerate() {
+                // Inside the floor plan.
+                for c in o.obox().footprint() {
+                    assert!(floor.contains(c), "{room} {i}: {} leaves the floor", o.category);
+                }
+                let (_, top) = o.obox().z_range();
+                assert!(top <= s.floor_plan.height + 1e-6, "{room} {i}: {} through the ceiling", o.category);
+                // No two pieces overlap: footprints for floor pieces, volumes for lamps.
+                for p in &s.objects[a + 1..] {
+                    let overlap = if o.category.is_hanging() || p.category.is_hanging() {
+                        intersection_volume(&o.obox(), &p.obox())
+                    } else {
+                        footprint_intersection_area(&o.obox(), &p.obox())
+                    };
+                    assert!(overlap < 1e-9, "{room} {i}: {} overlaps {}", o.category, p.category);
+                }
+            }
+            // Every contact human's piece affords its action, and the clean human sits on it.
+            for (k, &obj) in record.contact_objects.iter().enumerate() {
+                let h = &s.humans[k];
+                let b = &contact_boxes(h)[0];
+                assert!(
+                    s.objects[obj].category.affords(b.action),
+                    "{room} {i}: {} cannot {}",
+                    s.objects[obj].category,
+                    b.action
+                );
+            }
+            assert!(s.humans.len() > record.contact_objects.len(), "{room} {i}: walkers present");
+        }
+        let kl = kl_divergence(&target_frequencies(room), &stats.frequencies(room));
+        assert!(kl <= 0.05, "{room}: category KL {kl}");
+    }
+}
+
+/// The raw dataset is as poor as 3D-FRONT HUMAN's, and calibration meets SHADE's Table 2 targets.
+#[test]
+fn calibration_fixes_the_raw_defect() {
+    for room in RoomType::ALL {
+        let (mut iou, mut n, mut pen) = ([0.0; 2], 0usize, [0.0; 2]);
+        for i in 0..80 {
+            let raw = generate_room(room, 5, i, true).scene;
+            let cal = calibrate_scene(&raw, &mut Rng::new(i));
+            pen[0] += scene_penetration(&raw);
+            pen[1] += scene_penetration(&cal.scene);
+            for h in &cal.humans {
+                iou[0] += h.iou[0];
+                iou[1] += h.iou[1];
+                n += 1;
+                assert!(!h.fixed || h.iou[1] >= iou_target(h.action) - 1e-9);
+            }
+            assert_eq!(cal.scene.objects, raw.objects, "calibration moves people, not furniture");
+            assert!(validate(&cal.scene).is_empty());
+        }
+        let (raw_iou, cal_iou) = (iou[0] / n as f64, iou[1] / n as f64);
+        assert!((0.7..0.85).contains(&raw_iou), "{room}: raw IoU {raw_iou}");
+        assert!(cal_iou >= 0.94, "{room}: calibrated IoU {cal_iou}");
+        assert!(pen[0] >= 8.0 * pen[1], "{room}: E_pen {} → {}", pen[0], pen[1]);
+    }
+}
+
+#[test]
+fn contact_iou_of_clean_rooms_is_high() {
+    let mut total = 0.0;
+    let mut n = 0;
+    for i in 0..100 {
+        let s = generate_room(RoomType::Living, 2, i, false).scene;
+        for h in &s.humans {
+            for b in contact_boxes(h) {
+                total += contact_iou(&b.obox, &s.objects);
+                n += 1;
+            }
+        }
+    }
+    assert!(total / n as f64 > 0.9, "{}", total / n as f64);
+}
+
+#[test]
+fn splits_are_80_10_10_and_seeded() {
+    let s = split_of(1000, 3);
+    let count = |name: &str| s.iter().filter(|&&x| x == name).count();
+    assert_eq!((count("train"), count("val"), count("test")), (800, 100, 100));
+    assert_eq!(s, split_of(1000, 3));
+    assert_ne!(s, split_of(1000, 4));
+}
+
+fn files(dir: &std::path::Path) -> Vec<(String, Vec<u8>)> {
+    let mut out = Vec::new();
+    for split in DatasetStats::SPLITS {
+        let mut names: Vec<_> = std::fs::read_dir(dir.join(split)).unwrap().map(|e| e.unwrap().path()).collect();
+        names.sort();
+        out.extend(
+            names
+                .into_iter()
+                .map(|p| (format!("{split}/{}", p.file_name().unwrap().to_string_lossy()), std::fs::read(&p).unwrap())),
+        );
+    }
+    out
+}
+
+#[test]
+fn synth_and_calibrate_commands_write_deterministic_datasets() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |out: &str, seed: &str| {
+        let o = shade_sim(&[
+            "-q",
+            "synth",
+            "--room",
+            "dining",
+            "--scenes",
+            "20",
+            "--seed",
+            seed,
+            "--out",
+            dir.path().join(out).to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    };
+    run("a", "7");
+    run("b", "7");
+    run("c", "8");
+    let (a, b, c) = (files(&dir.path().join("a")), files(&dir.path().join("b")), files(&dir.path().join("c")));
+    assert_eq!(a.len(), 20);
+    assert_eq!(a, b, "same seed, same bytes");
+    assert_ne!(a, c);
+    assert_eq!(a.iter().filter(|(n, _)| n.starts_with("train/")).count(), 16);
+    let stats: DatasetStats = serde_json::from_slice(&std::fs::read(dir.path().join("a/stats.json")).unwrap()).unwrap();
+    assert_eq!((stats.room_type, stats.seed, stats.raw), (RoomType::Dining, 7, true));
+    assert_eq!(stats.splits["val"].rooms + stats.splits["test"].rooms, 4);
+    assert!(stats.command.contains("--scenes 20 --seed 7"));
+
+    let cal = dir.path().join("cal");
+    let o = shade_sim(&[
+        "calibrate",
+        "--json",
+        "--data",
+        dir.path().join("a").to_str().unwrap(),
+        "--out",
+        cal.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let report: shade_sim::data::CalibrationReport = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(report.scenes, 20);
+    assert!(report.iou[1] > report.iou[0]);
+    let written: shade_sim::data::CalibrationReport =
+        serde_json::from_slice(&std::fs::read(cal.join("calibration.json")).unwrap()).unwrap();
+    assert_eq!(written, report);
+    assert_eq!(files(&cal).len(), 20);
+    let stats: DatasetStats = serde_json::from_slice(&std::fs::read(cal.join("stats.json")).unwrap()).unwrap();
+    assert!(!stats.raw);
+}
+
+#[test]
+fn bad_dataset_inputs_exit_2_with_one_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let missing = dir.path().join("nothing");
+    let o =
+        shade_sim(&["calibrate", "--data", missing.to_str().unwrap(), "--out", dir.path().join("o").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = stderr(&o);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.starts_with(&format!("error: {}: cannot read", missing.join("stats.json").display())), "{err}");
+    let o =
+        shade_sim(&["synth", "--room", "bedroom", "--scenes", "0", "--out", dir.path().join("x").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = shade_sim(&["synth", "--room", "kitchen", "--scenes", "3", "--out", "x"]);
+    assert_eq!(o.status.code(), Some(2));
+    // A corrupt stats.json.
+    std::fs::create_dir_all(dir.path().join("bad")).unwrap();
+    std::fs::write(dir.path().join("bad/stats.json"), "{ not json").unwrap();
+    let o = shade_sim(&[
+        "calibrate",
+        "--data",
+        dir.path().join("bad").to_str().unwrap(),
+        "--out",
+        dir.path().join("o2").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("bad/stats.json: key must be a string"), "{}", stderr(&o));
+}
