@@ -5,6 +5,7 @@
 
 mod calibrate;
 mod conditions;
+mod import;
 mod inspect;
 mod output;
 mod progress;
@@ -77,6 +78,9 @@ pub enum Command {
     /// SHADE's calibration: fix misplaced contact humans, augment actions and orientations;
     /// writes the calibrated dataset and a before/after report.
     Calibrate(calibrate::CalibrateArgs),
+    /// Convert the licensed MIME release of 3D-FRONT HUMAN (folders of boxes.npz) to shade-scene/1.
+    #[command(name = "import-3dfront-human")]
+    Import3dfrontHuman(import::ImportArgs),
 }
 
 /// How the process ends.
@@ -107,6 +111,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
         Command::Conditions(args) => conditions::run(args, &cli.global),
         Command::Synth(args) => synth::run(args, &cli.global),
         Command::Calibrate(args) => calibrate::run(args, &cli.global),
+        Command::Import3dfrontHuman(args) => import::run(args, &cli.global),
     };
     match result {
         Err(e) if output::is_broken_pipe(&e) => Ok(ExitStatus::Success),

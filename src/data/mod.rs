@@ -10,6 +10,7 @@ mod calibrate;
 mod calibrate_dataset;
 mod error;
 mod floor_gen;
+mod import;
 pub mod layout;
 mod people;
 mod rng;
@@ -24,6 +25,7 @@ pub use calibrate::{
 pub use calibrate_dataset::{CalibrationReport, Unfixable, calibrate_dataset, read_stats};
 pub use error::DataError;
 pub use floor_gen::{Shape, area_range, sample_floor};
+pub use import::{floor_outline, import_dataset, import_room};
 pub use people::{WALK_FPS, contact_pose, misplace, translate};
 pub use rng::Rng;
 pub use rooms::{RoomRecord, furnish, generate_room, sample_categories};

@@ -6,6 +6,7 @@ mod conditions;
 mod data;
 mod examples;
 mod geom_props;
+mod import;
 mod scene_io;
 
 use std::path::{Path, PathBuf};
