@@ -13,3 +13,4 @@ pub mod furniture;
 pub mod geom;
 pub mod human;
 pub mod scene;
+pub mod sim;

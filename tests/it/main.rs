@@ -8,6 +8,7 @@ mod examples;
 mod geom_props;
 mod import;
 mod scene_io;
+mod sim;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

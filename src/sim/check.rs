@@ -1,0 +1,303 @@
+//! The checks: human penetration, human support, furniture overlaps, furniture in walls or outside
+//! the floor, and (in `stability`) furniture stability.
+//!
+//! Penetration depths are exact capsule–box contact depths from parry (GJK/EPA), not the saturating
+//! depths physics engines report for deep overlaps.
+
+use super::solids::{Owner, Solid, furniture_solids, wall_solids};
+use super::stability::unstable_objects;
+use super::{Violation, ViolationKind};
+use crate::scene::{Action, Human, Scene};
+use glam::DVec3;
+use rapier3d::parry::math::Pose;
+use rapier3d::parry::query;
+use rapier3d::parry::shape::Capsule;
+use serde::{Deserialize, Serialize};
+
+/// Settings of a check.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CheckConfig {
+    /// Penetration deeper than this is a violation (m). Default 0.02.
+    pub tolerance: f64,
+    /// A sitting or lying body needs a surface within this distance below it; a touching palm
+    /// within this distance of furniture (m). Default 0.05.
+    pub support_distance: f64,
+    /// Run the stability simulation. Default true.
+    pub stability: bool,
+    /// Simulated time for stability (s). Default 2.
+    pub stability_seconds: f64,
+    /// A piece that moves further than this is unstable (m). Default 0.05.
+    pub max_displacement: f64,
+    /// A piece that tilts more than this is unstable (degrees). Default 5.
+    pub max_tilt_degrees: f64,
+}
+
+impl Default for CheckConfig {
+    fn default() -> CheckConfig {
+        CheckConfig {
+            tolerance: 0.02,
+            support_distance: 0.05,
+            stability: true,
+            stability_seconds: 2.0,
+            max_displacement: 0.05,
+            max_tilt_degrees: 5.0,
+        }
+    }
+}
+
+/// The check of one scene.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CheckReport {
+    /// Every violation, by kind, then human / object order, then frame.
+    pub violations: Vec<Violation>,
+    /// Frames replayed (over all humans).
+    pub frames: usize,
+}
+
+impl CheckReport {
+    /// Whether nothing was found.
+    pub fn is_clean(&self) -> bool {
+        self.violations.is_empty()
+    }
+
+    /// Violations of one kind.
+    pub fn count(&self, kind: ViolationKind) -> usize {
+        self.violations.iter().filter(|v| v.kind == kind).count()
+    }
+}
+
+fn owner_id(scene: &Scene, owner: Owner) -> String {
+    match owner {
+        Owner::Object(i) => scene.objects[i].id.clone(),
+        Owner::Wall(i) => format!("wall{i}"),
+    }
+}
+
+/// Runs every check on a (validated) scene.
+pub fn check_scene(scene: &Scene, cfg: &CheckConfig) -> CheckReport {
+    let furniture = furniture_solids(scene);
+    let walls = wall_solids(scene);
+    let solids: Vec<Solid> = furniture.iter().chain(&walls).cloned().collect();
+    let mut violations = Vec::new();
+    let mut frames = 0;
+    for human in &scene.humans {
+        frames += human.frames.len();
+        violations.extend(penetrations(scene, human, &solids, cfg.tolerance));
+        violations.extend(support(human, &furniture, cfg.support_distance));
+    }
+    violations.extend(furniture_overlaps(scene, &furniture, &walls, cfg.tolerance));
+    violations.extend(outside_floor(scene, cfg.tolerance));
+    if cfg.stability {
+        violations.extend(unstable_objects(scene, cfg));
+    }
+    violations.sort_by(|a, b| {
+        (a.kind, &a.human, &a.object, a.frame).partial_cmp(&(b.kind, &b.human, &b.object, b.frame)).expect("no NaN keys")
+    });
+    CheckReport { violations, frames }
+}
+
+/// Penetration depth of a capsule into a solid (0 when apart).
+pub fn capsule_depth(a: DVec3, b: DVec3, radius: f64, solid: &Solid) -> f64 {
+    let capsule = Capsule::new(a.as_vec3(), b.as_vec3(), radius as f32);
+    match query::contact(&Pose::IDENTITY, &capsule, &solid.pose, &solid.shape, 0.0) {
+        Ok(Some(c)) if c.dist < 0.0 => -(c.dist as f64),
+        _ => 0.0,
+    }
+}
+
+/// Bone penetrations of one human, one violation per (bone, solid) episode at its deepest frame.
+fn penetrations(scene: &Scene, human: &Human, solids: &[Solid], tolerance: f64) -> Vec<Violation> {
+    let sk = &human.skeleton;
+    let mut out = Vec::new();
+    for bone in &sk.bones {
+        let name = format!("{}-{}", sk.joints[bone.a], sk.joints[bone.b]);
+        // Open episodes per solid: (start frame, worst frame, worst depth).
+        let mut open: Vec<Option<(usize, usize, f64)>> = vec![None; solids.len()];
+        let close = |s: usize, ep: (usize, usize, f64), end: usize, out: &mut Vec<Violation>| {
+            out.push(Violation {
+                kind: ViolationKind::Penetration,
+                human: Some(human.id.clone()),
+                bone: Some(name.clone()),
+                object: Some(owner_id(scene, solids[s].owner)),
+                other: None,
+                frame: Some(ep.1),
+                frames: Some([ep.0, end]),
+                depth: ep.2,
+            });
+        };
+        for f in 0..human.frames.len() {
+            let (a, b) = (human.joint_at(f, bone.a), human.joint_at(f, bone.b));
+            let lo = a.min(b) - bone.radius;
+            let hi = a.max(b) + bone.radius;
+            for (s, solid) in solids.iter().enumerate() {
+                let depth = if solid.near(lo, hi, 0.0) { capsule_depth(a, b, bone.radius, solid) } else { 0.0 };
+                match (&mut open[s], depth > tolerance) {
+                    (Some(ep), true) if depth > ep.2 => {
+                        ep.1 = f;
+                        ep.2 = depth;
+                    }
+                    (Some(_), true) => {}
+                    (None, true) => open[s] = Some((f, f, depth)),
+                    (Some(_), false) => {
+                        let ep = open[s].take().expect("matched Some");
+                        close(s, ep, f, &mut out);
+                    }
+                    (None, false) => {}
+                }
+            }
+        }
+        for (s, ep) in open.into_iter().enumerate() {
+            if let Some(ep) = ep {
+                close(s, ep, human.frames.len(), &mut out);
+            }
+        }
+    }
+    out
+}
+
+/// Lowest surface point under a set of joints (joint z minus the largest radius of its bones).
+fn lowest_under(human: &Human, f: usize, joints: &[usize]) -> (DVec3, f64) {
+    let sk = &human.skeleton;
+    let radius = |j: usize| sk.bones.iter().filter(|b| b.a == j || b.b == j).map(|b| b.radius).fold(0.0, f64::max);
+    let mut best = (DVec3::ZERO, f64::INFINITY);
+    for &j in joints {
+        let p = human.joint_at(f, j);
+        let z = p.z - radius(j);
+        if z < best.1 {
+            best = (p, z);
+        }
+    }
+    best
+}
+
+/// Gap from a body point at height `z` down to the nearest furniture top under `p` (negative when
+/// the point is inside a part; infinite when nothing is under it).
+fn gap_below(p: DVec3, z: f64, furniture: &[Solid]) -> f64 {
+    furniture
+        .iter()
+        .filter(|s| s.obox.footprint_contains(p.truncate()))
+        .map(|s| {
+            let (bottom, top) = s.obox.z_range();
+            if z < bottom { f64::INFINITY } else { z - top }
+        })
+        .filter(|g| g.is_finite())
+        .fold(f64::INFINITY, |best, g| if g.abs() < best.abs() { g } else { best })
+}
+
+/// Missing support of sitting and lying humans and far-off touching hands.
+fn support(human: &Human, furniture: &[Solid], limit: f64) -> Vec<Violation> {
+    let sk = &human.skeleton;
+    let ids = |names: &[&str]| names.iter().filter_map(|n| sk.joint(n)).collect::<Vec<_>>();
+    let mut out = Vec::new();
+    for span in human.contact_spans() {
+        let mut worst: Option<(usize, f64, &str)> = None;
+        for f in span.start..span.end {
+            let (part, gap) = match span.action {
+                Action::Sit => {
+                    let (p, z) = lowest_under(human, f, &ids(&["pelvis", "left_hip", "right_hip"]));
+                    let pelvis = sk.joint("pelvis").map_or(p, |j| human.joint_at(f, j));
+                    ("pelvis", gap_below(pelvis, z, furniture))
+                }
+                Action::Lie => {
+                    let (p, z) = lowest_under(human, f, &ids(&["pelvis", "spine", "chest"]));
+                    let chest = sk.joint("spine").map_or(p, |j| human.joint_at(f, j));
+                    ("torso", gap_below(chest, z, furniture))
+                }
+                Action::Touch => ("palm", palm_distance(human, f, furniture)),
+                Action::Walk | Action::Stand => continue,
+            };
+            let missing = if gap.is_finite() { gap.max(0.0) } else { f64::INFINITY };
+            if missing > limit && worst.is_none_or(|w| missing > w.1) {
+                worst = Some((f, missing, part));
+            }
+        }
+        if let Some((f, missing, part)) = worst {
+            out.push(Violation {
+                kind: ViolationKind::Unsupported,
+                human: Some(human.id.clone()),
+                bone: Some(part.to_string()),
+                object: None,
+                other: None,
+                frame: Some(f),
+                frames: Some([span.start, span.end]),
+                depth: if missing.is_finite() { missing } else { -1.0 },
+            });
+        }
+    }
+    out
+}
+
+/// Distance from the palm of the hand that reaches furthest to the nearest furniture part.
+fn palm_distance(human: &Human, f: usize, furniture: &[Solid]) -> f64 {
+    let sk = &human.skeleton;
+    let palm = |side: &str| -> Option<DVec3> {
+        let e = human.joint_at(f, sk.joint(&format!("{side}_elbow"))?);
+        let w = human.joint_at(f, sk.joint(&format!("{side}_wrist"))?);
+        Some(w + (w - e) * 0.37)
+    };
+    let dist = |p: DVec3| furniture.iter().map(|s| s.obox.signed_distance(p)).fold(f64::INFINITY, f64::min);
+    ["left", "right"].iter().filter_map(|s| palm(s)).map(dist).fold(f64::INFINITY, f64::min)
+}
+
+/// Furniture parts inside other furniture or walls.
+fn furniture_overlaps(scene: &Scene, furniture: &[Solid], walls: &[Solid], tolerance: f64) -> Vec<Violation> {
+    let mut worst: std::collections::BTreeMap<(Owner, Owner), f64> = std::collections::BTreeMap::new();
+    let depth = |a: &Solid, b: &Solid| -> f64 {
+        if !a.near(b.aabb.0, b.aabb.1, 0.0) {
+            return 0.0;
+        }
+        match query::contact(&a.pose, &a.shape, &b.pose, &b.shape, 0.0) {
+            Ok(Some(c)) if c.dist < 0.0 => -(c.dist as f64),
+            _ => 0.0,
+        }
+    };
+    for (i, a) in furniture.iter().enumerate() {
+        for b in furniture[i + 1..].iter().chain(walls) {
+            if a.owner == b.owner {
+                continue;
+            }
+            let d = depth(a, b);
+            if d > tolerance {
+                let e = worst.entry((a.owner, b.owner)).or_insert(0.0);
+                *e = e.max(d);
+            }
+        }
+    }
+    worst
+        .into_iter()
+        .map(|((a, b), d)| Violation {
+            kind: if matches!(b, Owner::Wall(_)) { ViolationKind::ObjectWall } else { ViolationKind::ObjectOverlap },
+            human: None,
+            bone: None,
+            object: Some(owner_id(scene, a)),
+            other: Some(owner_id(scene, b)),
+            frame: None,
+            frames: None,
+            depth: d,
+        })
+        .collect()
+}
+
+/// Pieces whose footprint reaches beyond the floor plan by more than the tolerance.
+fn outside_floor(scene: &Scene, tolerance: f64) -> Vec<Violation> {
+    let polygon = scene.floor_plan.polygon();
+    scene
+        .objects
+        .iter()
+        .filter_map(|o| {
+            let out = o.obox().footprint().iter().map(|&c| polygon.signed_distance(c)).fold(f64::NEG_INFINITY, f64::max);
+            (out > tolerance).then(|| Violation {
+                kind: ViolationKind::OutsideFloor,
+                human: None,
+                bone: None,
+                object: Some(o.id.clone()),
+                other: None,
+                frame: None,
+                frames: None,
+                depth: out,
+            })
+        })
+        .collect()
+}
+

@@ -1,0 +1,15 @@
+//! Physical validation of scenes: human penetration and support, furniture overlaps, walls, the
+//! floor plan, and furniture stability in a Rapier world.
+//!
+//! Checks return typed [`Violation`]s; formatting is the CLI's job. Geometry comes from the shared
+//! furniture templates (`crate::furniture`).
+
+mod check;
+mod solids;
+mod stability;
+mod violation;
+
+pub use check::{CheckConfig, CheckReport, capsule_depth, check_scene};
+pub use solids::{Owner, Solid, WALL_THICKNESS, furniture_solids, pose_of, wall_solids};
+pub use stability::{build_world, unstable_objects};
+pub use violation::{Violation, ViolationKind};

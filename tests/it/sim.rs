@@ -1,0 +1,132 @@
+//! Physical checks on hand-built scenes with known answers.
+
+use glam::DVec2;
+use shade_sim::data::{contact_pose, layout::Placed, Rng};
+use shade_sim::geom::Polyline;
+use shade_sim::human::{Body, Motion, sit};
+use shade_sim::scene::{Action, Category, FloorPlan, Object, RoomType, Scene};
+use shade_sim::sim::{CheckConfig, ViolationKind, check_scene};
+
+fn room() -> Scene {
+    Scene::new(RoomType::Living, FloorPlan { polygon: vec![[0.0, 0.0], [5.0, 0.0], [5.0, 4.0], [0.0, 4.0]], height: 2.7 })
+}
+
+fn object(id: &str, category: Category, center: [f64; 2], size: [f64; 3], yaw: f64) -> Object {
+    Object { id: id.into(), category, center: [center[0], center[1], size[2] * 0.5], size, yaw }
+}
+
+fn sitter_on(o: &Object, id: &str) -> shade_sim::scene::Human {
+    let piece = Placed { category: o.category, obox: o.obox(), access: vec![], anchor: None };
+    let (body, pose) = contact_pose(&piece, Action::Sit, 0.0, &mut Rng::new(1)).expect("the chair seats a person");
+    let mut m = Motion::new(body, 30.0);
+    m.hold(pose, 10, Action::Sit);
+    m.into_human(id)
+}
+
+fn kinds(scene: &Scene) -> Vec<ViolationKind> {
+    check_scene(scene, &CheckConfig::default()).violations.iter().map(|v| v.kind).collect()
+}
+
+#[test]
+fn a_chair_in_a_walking_path_is_hit_when_the_walker_passes() {
+    let mut s = room();
+    s.objects.push(object("o0", Category::DiningChair, [2.5, 2.0], [0.45, 0.5, 0.88], 0.0));
+    let mut m = Motion::new(Body::default(), 30.0);
+    m.walk(&Polyline::new(vec![DVec2::new(0.5, 2.0), DVec2::new(4.5, 2.0)]).unwrap(), 1.2);
+    s.humans.push(m.into_human("h0"));
+    let report = check_scene(&s, &CheckConfig { stability: false, ..CheckConfig::default() });
+    let hits: Vec<_> = report.violations.iter().filter(|v| v.kind == ViolationKind::Penetration).collect();
+    assert!(!hits.is_empty());
+    // The pelvis reaches the chair's near edge (x = 2.275) about 1.48 s in, frame 44, and leaves
+    // its far edge around frame 56: every episode lies around there.
+    for v in &hits {
+        assert_eq!((v.human.as_deref(), v.object.as_deref()), (Some("h0"), Some("o0")));
+        let [start, end] = v.frames.unwrap();
+        assert!(start >= 30 && end <= 75 && (start..end).contains(&v.frame.unwrap()), "{v:?}");
+        assert!(v.depth > 0.02);
+    }
+    assert_eq!(report.frames, m_frames(4.0));
+}
+
+fn m_frames(length: f64) -> usize {
+    (length / 1.2 * 30.0).ceil() as usize + 1
+}
+
+#[test]
+fn sitting_on_air_is_unsupported_and_on_a_chair_is_clean() {
+    let mut air = room();
+    let mut m = Motion::new(Body::default(), 30.0);
+    m.hold(sit(&Body::default(), DVec2::new(2.0, 2.0), 0.45, 0.0), 10, Action::Sit);
+    air.humans.push(m.into_human("h0"));
+    let report = check_scene(&air, &CheckConfig::default());
+    assert_eq!(report.violations.len(), 1, "{:?}", report.violations);
+    let v = &report.violations[0];
+    assert_eq!((v.kind, v.human.as_deref(), v.bone.as_deref()), (ViolationKind::Unsupported, Some("h0"), Some("pelvis")));
+
+    let mut chair = room();
+    chair.objects.push(object("o0", Category::DiningChair, [2.0, 2.0], [0.45, 0.5, 0.88], 0.7));
+    let h = sitter_on(&chair.objects[0], "h0");
+    chair.humans.push(h);
+    assert_eq!(kinds(&chair), vec![], "{:?}", check_scene(&chair, &CheckConfig::default()).violations);
+}
+
+#[test]
+fn legs_under_a_dining_table_are_clean() {
+    let mut s = room();
+    s.objects.push(object("o0", Category::DiningTable, [2.5, 2.0], [1.6, 0.9, 0.75], 0.0));
+    // A chair pulled up to the table's south side, facing north.
+    s.objects.push(object("o1", Category::DiningChair, [2.5, 1.27], [0.45, 0.5, 0.88], 0.0));
+    let h = sitter_on(&s.objects[1], "h0");
+    // The knees are under the table top.
+    let knee = h.joint_at(0, 6);
+    assert!(knee.y > 1.55 && knee.z < 0.71, "{knee}");
+    s.humans.push(h);
+    assert_eq!(kinds(&s), vec![], "{:?}", check_scene(&s, &CheckConfig::default()).violations);
+}
+
+#[test]
+fn overlapping_wardrobes_and_a_bed_through_a_wall() {
+    let mut s = room();
+    s.objects.push(object("o0", Category::Wardrobe, [1.0, 3.65], [1.2, 0.6, 2.0], std::f64::consts::PI));
+    s.objects.push(object("o1", Category::Wardrobe, [1.8, 3.65], [1.2, 0.6, 2.0], std::f64::consts::PI));
+    let r = check_scene(&s, &CheckConfig { stability: false, ..CheckConfig::default() });
+    let v: Vec<_> = r.violations.iter().filter(|v| v.kind == ViolationKind::ObjectOverlap).collect();
+    assert_eq!(v.len(), 1);
+    assert_eq!((v[0].object.as_deref(), v[0].other.as_deref()), (Some("o0"), Some("o1")));
+    // They overlap by 0.4 m along x; the shallowest way out is 0.4 m.
+    assert!((v[0].depth - 0.4).abs() < 1e-3, "{}", v[0].depth);
+
+    let mut bed = room();
+    bed.objects.push(object("o0", Category::DoubleBed, [2.5, 4.0], [1.6, 2.0, 1.0], std::f64::consts::PI));
+    let r = check_scene(&bed, &CheckConfig { stability: false, ..CheckConfig::default() });
+    let k: Vec<_> = r.violations.iter().map(|v| (v.kind, v.other.as_deref())).collect();
+    assert!(k.contains(&(ViolationKind::ObjectWall, Some("wall2"))), "{k:?}");
+    let out = r.violations.iter().find(|v| v.kind == ViolationKind::OutsideFloor).expect("outside the floor");
+    assert!((out.depth - 1.0).abs() < 1e-9, "{}", out.depth);
+}
+
+#[test]
+fn a_hanging_lamp_and_a_standing_cabinet_are_stable_a_floating_box_is_not() {
+    let mut s = room();
+    s.objects.push(Object {
+        id: "o0".into(),
+        category: Category::PendantLamp,
+        center: [2.5, 2.0, 2.3],
+        size: [0.5, 0.5, 0.8],
+        yaw: 0.0,
+    });
+    s.objects.push(object("o1", Category::Cabinet, [1.0, 1.0], [0.8, 0.5, 0.8], 0.3));
+    assert_eq!(kinds(&s), vec![]);
+    s.objects.push(Object {
+        id: "o2".into(),
+        category: Category::Cabinet,
+        center: [3.5, 2.0, 1.0 + 0.4],
+        size: [0.8, 0.5, 0.8],
+        yaw: 0.0,
+    });
+    let r = check_scene(&s, &CheckConfig::default());
+    assert_eq!(r.violations.len(), 1, "{:?}", r.violations);
+    let v = &r.violations[0];
+    assert_eq!((v.kind, v.object.as_deref()), (ViolationKind::Unstable, Some("o2")));
+    assert!(v.depth > 0.9, "it falls about a metre: {}", v.depth);
+}
