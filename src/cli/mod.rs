@@ -4,6 +4,7 @@
 //! Only this module (and `main.rs`) uses anyhow; the library returns typed errors.
 
 mod calibrate;
+mod check;
 mod conditions;
 mod import;
 mod inspect;
@@ -78,6 +79,9 @@ pub enum Command {
     /// SHADE's calibration: fix misplaced contact humans, augment actions and orientations;
     /// writes the calibrated dataset and a before/after report.
     Calibrate(calibrate::CalibrateArgs),
+    /// Physical validation: penetrations, support, overlaps, walls, floor plan, stability.
+    /// Exit 0 clean, 1 violations, 2 bad input.
+    Check(check::CheckArgs),
     /// Convert the licensed MIME release of 3D-FRONT HUMAN (folders of boxes.npz) to shade-scene/1.
     #[command(name = "import-3dfront-human")]
     Import3dfrontHuman(import::ImportArgs),
@@ -111,6 +115,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
         Command::Conditions(args) => conditions::run(args, &cli.global),
         Command::Synth(args) => synth::run(args, &cli.global),
         Command::Calibrate(args) => calibrate::run(args, &cli.global),
+        Command::Check(args) => check::run(args, &cli.global),
         Command::Import3dfrontHuman(args) => import::run(args, &cli.global),
     };
     match result {

@@ -27,6 +27,9 @@ use serde::{Deserialize, Serialize};
 /// E_pen (Σ metres over ≈ 1,000 surface points) below which a contact human counts as resting, not
 /// sunk.
 pub const SAFE_PENETRATION: f64 = 0.5;
+/// Deepest any body-surface point of a calibrated human may be inside furniture (the physics
+/// check's default tolerance).
+pub const MAX_POINT_DEPTH: f64 = 0.02;
 /// Largest translation searched, per axis.
 pub const MAX_TRANSLATION: f64 = 2.0;
 /// Surface points used while searching (the final figures use 1,000).
@@ -167,8 +170,20 @@ fn fix_translation(h: &mut Human, judge: &Judge) -> (Option<usize>, DVec3, bool,
     let sampler = SurfaceSampler::new(&h.skeleton, &joints, SEARCH_POINTS);
     let points = sampler.points(&h.skeleton, &joints);
     let scale = crate::eval::SURFACE_POINTS as f64 / points.len().max(1) as f64;
+    // E_pen (scaled to 1,000 points), or infinity when any point is deeper than the physics
+    // check's tolerance: a resting body may press into a cushion, not sink through it.
     let penetration = |t: DVec3| -> f64 {
-        points.iter().map(|&p| judge.field.signed_distance(p + t)).filter(|&d| d < 0.0).map(|d| -d).sum::<f64>() * scale
+        let mut sum = 0.0;
+        for &p in &points {
+            let d = judge.field.signed_distance(p + t);
+            if d < -MAX_POINT_DEPTH {
+                return f64::INFINITY;
+            }
+            if d < 0.0 {
+                sum -= d;
+            }
+        }
+        sum * scale
     };
     let iou = |t: DVec3| contact_iou(&OBox::new(b.center + t, b.size, b.yaw), judge.objects);
     // Corrections around the target, nearest first: 3 cm steps within ±0.3 m, then 6 cm steps

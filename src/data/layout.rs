@@ -459,8 +459,18 @@ pub struct FreeGrid {
 }
 
 impl FreeGrid {
-    /// The grid of `polygon` with `obstacles` as footprints.
+    /// The grid of `polygon` with `obstacles` as footprints, walkable where at least half a
+    /// walkway ([`WALKWAY_HALF`]) from both.
     pub fn new<'a>(polygon: &Polygon, obstacles: impl Iterator<Item = &'a OBox>) -> FreeGrid {
+        FreeGrid::with_clearance(polygon, obstacles, WALKWAY_HALF)
+    }
+
+    /// As [`FreeGrid::new`], walkable where at least `clearance` from walls and obstacles.
+    pub fn with_clearance<'a>(
+        polygon: &Polygon,
+        obstacles: impl Iterator<Item = &'a OBox>,
+        clearance: f64,
+    ) -> FreeGrid {
         let (min, max) = polygon.bounds();
         let origin = min;
         let nx = ((max.x - min.x) / GRID).ceil() as usize;
@@ -473,18 +483,18 @@ impl FreeGrid {
             for i in 0..nx {
                 let p = center(i, j);
                 let mut d = -polygon.signed_distance(p);
-                if d > WALKWAY_HALF {
+                if d >= clearance {
                     for o in &obstacles {
                         let (lo, hi) = o.footprint_aabb();
-                        if p.x < lo.x - WALKWAY_HALF
-                            || p.x > hi.x + WALKWAY_HALF
-                            || p.y < lo.y - WALKWAY_HALF
-                            || p.y > hi.y + WALKWAY_HALF
+                        if p.x < lo.x - clearance
+                            || p.x > hi.x + clearance
+                            || p.y < lo.y - clearance
+                            || p.y > hi.y + clearance
                         {
                             continue;
                         }
                         d = d.min(o.footprint_signed_distance(p));
-                        if d < WALKWAY_HALF {
+                        if d < clearance {
                             break;
                         }
                     }
@@ -496,7 +506,7 @@ impl FreeGrid {
         let mut next = 0u32;
         let mut queue = VecDeque::new();
         for start in 0..nx * ny {
-            if label[start] != u32::MAX || clear[start] < WALKWAY_HALF {
+            if label[start] != u32::MAX || clear[start] < clearance {
                 continue;
             }
             label[start] = next;
@@ -504,7 +514,7 @@ impl FreeGrid {
             while let Some(c) = queue.pop_front() {
                 let (i, j) = (c % nx, c / nx);
                 let mut visit = |n: usize| {
-                    if label[n] == u32::MAX && clear[n] >= WALKWAY_HALF {
+                    if label[n] == u32::MAX && clear[n] >= clearance {
                         label[n] = next;
                         queue.push_back(n);
                     }

@@ -19,6 +19,9 @@ use std::collections::VecDeque;
 
 /// Frames per second of walkers in the dataset.
 pub const WALK_FPS: f64 = 10.0;
+/// Distance from a walker's path to furniture, walls and contact humans: half the shoulders, the
+/// arm swing and the foot placement beside the path.
+pub const WALKER_CLEARANCE: f64 = 0.45;
 /// Largest E_pen a clean contact human may have against the furniture.
 const CLEAN_PENETRATION: f64 = 0.5;
 
@@ -176,14 +179,22 @@ fn body_box(h: &Human) -> OBox {
 pub fn walkers(layout: &Layout, contact: &[Human], count: usize, rng: &mut Rng) -> Vec<Human> {
     let bodies: Vec<OBox> = contact.iter().map(body_box).collect();
     let obstacles = layout.placed.iter().filter(|p| !p.category.is_hanging()).map(|p| &p.obox).chain(bodies.iter());
-    let grid = FreeGrid::new(layout.polygon(), obstacles);
-    let Some(main) = grid.main_component() else { return Vec::new() };
-    let (nx, ny, _) = grid.shape();
-    let cells: Vec<(usize, usize)> =
-        (0..ny).flat_map(|j| (0..nx).map(move |i| (i, j))).filter(|&(i, j)| grid.label(i, j) == main).collect();
-    if cells.len() < 10 {
-        return Vec::new();
+    // Walkers keep their whole swinging body clear (WALKER_CLEARANCE from the path to anything);
+    // in cramped rooms a little less, down to the narrowest walkway.
+    let obstacles: Vec<&OBox> = obstacles.collect();
+    let mut found = None;
+    for clearance in [WALKER_CLEARANCE, 0.38, super::layout::WALKWAY_HALF] {
+        let grid = FreeGrid::with_clearance(layout.polygon(), obstacles.iter().copied(), clearance);
+        let Some(main) = grid.main_component() else { continue };
+        let (nx, ny, _) = grid.shape();
+        let cells: Vec<(usize, usize)> =
+            (0..ny).flat_map(|j| (0..nx).map(move |i| (i, j))).filter(|&(i, j)| grid.label(i, j) == main).collect();
+        if cells.len() >= 10 {
+            found = Some((grid, main, cells));
+            break;
+        }
     }
+    let Some((grid, main, cells)) = found else { return Vec::new() };
     let mut out = Vec::new();
     for attempt in 0..count * 15 {
         if out.len() == count {

@@ -92,7 +92,9 @@ pub fn check_scene(scene: &Scene, cfg: &CheckConfig) -> CheckReport {
         violations.extend(unstable_objects(scene, cfg));
     }
     violations.sort_by(|a, b| {
-        (a.kind, &a.human, &a.object, a.frame).partial_cmp(&(b.kind, &b.human, &b.object, b.frame)).expect("no NaN keys")
+        (a.kind, &a.human, &a.object, a.frame)
+            .partial_cmp(&(b.kind, &b.human, &b.object, b.frame))
+            .expect("no NaN keys")
     });
     CheckReport { violations, frames }
 }
@@ -286,7 +288,8 @@ fn outside_floor(scene: &Scene, tolerance: f64) -> Vec<Violation> {
         .objects
         .iter()
         .filter_map(|o| {
-            let out = o.obox().footprint().iter().map(|&c| polygon.signed_distance(c)).fold(f64::NEG_INFINITY, f64::max);
+            let out =
+                o.obox().footprint().iter().map(|&c| polygon.signed_distance(c)).fold(f64::NEG_INFINITY, f64::max);
             (out > tolerance).then(|| Violation {
                 kind: ViolationKind::OutsideFloor,
                 human: None,
@@ -300,4 +303,3 @@ fn outside_floor(scene: &Scene, tolerance: f64) -> Vec<Violation> {
         })
         .collect()
 }
-

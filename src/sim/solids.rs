@@ -59,7 +59,12 @@ impl Solid {
     /// Whether its AABB comes within `margin` of the box `lo`..`hi`.
     pub fn near(&self, lo: DVec3, hi: DVec3, margin: f64) -> bool {
         let (a, b) = self.aabb;
-        a.x <= hi.x + margin && b.x >= lo.x - margin && a.y <= hi.y + margin && b.y >= lo.y - margin && a.z <= hi.z + margin && b.z >= lo.z - margin
+        a.x <= hi.x + margin
+            && b.x >= lo.x - margin
+            && a.y <= hi.y + margin
+            && b.y >= lo.y - margin
+            && a.z <= hi.z + margin
+            && b.z >= lo.z - margin
     }
 }
 

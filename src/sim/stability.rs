@@ -17,8 +17,7 @@ const DENSITY: f32 = 300.0;
 /// A Rapier world of the scene: floor, walls, furniture (dynamic unless hanging), humans
 /// (kinematic, one capsule per bone). Returns the world and each object's body handle.
 pub fn build_world(scene: &Scene) -> (PhysicsWorld, Vec<RigidBodyHandle>) {
-    let mut world = PhysicsWorld::default();
-    world.gravity = Vector::new(0.0, 0.0, -9.81);
+    let mut world = PhysicsWorld { gravity: Vector::new(0.0, 0.0, -9.81), ..PhysicsWorld::default() };
     let (lo, hi) = scene.floor_plan.polygon().bounds();
     let mid = ((lo + hi) * 0.5).as_vec2();
     world.insert(

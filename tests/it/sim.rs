@@ -1,14 +1,17 @@
 //! Physical checks on hand-built scenes with known answers.
 
 use glam::DVec2;
-use shade_sim::data::{contact_pose, layout::Placed, Rng};
+use shade_sim::data::{Rng, contact_pose, layout::Placed};
 use shade_sim::geom::Polyline;
 use shade_sim::human::{Body, Motion, sit};
 use shade_sim::scene::{Action, Category, FloorPlan, Object, RoomType, Scene};
 use shade_sim::sim::{CheckConfig, ViolationKind, check_scene};
 
 fn room() -> Scene {
-    Scene::new(RoomType::Living, FloorPlan { polygon: vec![[0.0, 0.0], [5.0, 0.0], [5.0, 4.0], [0.0, 4.0]], height: 2.7 })
+    Scene::new(
+        RoomType::Living,
+        FloorPlan { polygon: vec![[0.0, 0.0], [5.0, 0.0], [5.0, 4.0], [0.0, 4.0]], height: 2.7 },
+    )
 }
 
 fn object(id: &str, category: Category, center: [f64; 2], size: [f64; 3], yaw: f64) -> Object {
@@ -61,7 +64,10 @@ fn sitting_on_air_is_unsupported_and_on_a_chair_is_clean() {
     let report = check_scene(&air, &CheckConfig::default());
     assert_eq!(report.violations.len(), 1, "{:?}", report.violations);
     let v = &report.violations[0];
-    assert_eq!((v.kind, v.human.as_deref(), v.bone.as_deref()), (ViolationKind::Unsupported, Some("h0"), Some("pelvis")));
+    assert_eq!(
+        (v.kind, v.human.as_deref(), v.bone.as_deref()),
+        (ViolationKind::Unsupported, Some("h0"), Some("pelvis"))
+    );
 
     let mut chair = room();
     chair.objects.push(object("o0", Category::DiningChair, [2.0, 2.0], [0.45, 0.5, 0.88], 0.7));

@@ -1,0 +1,116 @@
+//! `shade-sim check SCENE|DIR… [--json] [--tolerance M] [--no-stability]`: physical validation.
+//!
+//! Exit 0 when every scene is clean, 1 when any has a violation, 2 on bad input. Folders are
+//! searched for scene files (not `stats.json` / `calibration.json`) and checked in parallel.
+
+use super::output::{print_json, print_text};
+use super::{ExitStatus, GlobalArgs};
+use anyhow::Context;
+use clap::Args;
+use rayon::prelude::*;
+use serde::Serialize;
+use shade_sim::scene::Scene;
+use shade_sim::sim::{CheckConfig, CheckReport, ViolationKind, check_scene};
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, Args)]
+pub struct CheckArgs {
+    /// Scene files or folders of scene files.
+    #[arg(required = true)]
+    pub paths: Vec<PathBuf>,
+    /// Penetration deeper than this (m) is a violation.
+    #[arg(long, default_value_t = 0.02)]
+    pub tolerance: f64,
+    /// Skip the stability simulation.
+    #[arg(long)]
+    pub no_stability: bool,
+}
+
+#[derive(Serialize)]
+struct FileReport {
+    file: String,
+    #[serde(flatten)]
+    report: CheckReport,
+}
+
+fn collect(path: &Path, out: &mut Vec<PathBuf>) -> anyhow::Result<()> {
+    if path.is_dir() {
+        let mut entries: Vec<PathBuf> = std::fs::read_dir(path)
+            .with_context(|| format!("{}: cannot read folder", path.display()))?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .collect();
+        entries.sort();
+        for p in entries {
+            let skip = p.file_name().is_some_and(|n| n == "stats.json" || n == "calibration.json");
+            if p.is_dir() || (p.extension().is_some_and(|e| e == "json") && !skip) {
+                collect(&p, out)?;
+            }
+        }
+    } else {
+        out.push(path.to_path_buf());
+    }
+    Ok(())
+}
+
+pub fn run(args: &CheckArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
+    anyhow::ensure!(
+        args.tolerance.is_finite() && args.tolerance >= 0.0,
+        "--tolerance: must be a non-negative number of metres"
+    );
+    let mut files = Vec::new();
+    for p in &args.paths {
+        collect(p, &mut files)?;
+    }
+    let cfg = CheckConfig { tolerance: args.tolerance, stability: !args.no_stability, ..CheckConfig::default() };
+    let bar = super::progress::bar(global, files.len() as u64, "check");
+    // Load everything first: bad input fails before any checking.
+    let scenes: Vec<Scene> = files.iter().map(Scene::load).collect::<Result<_, _>>()?;
+    let reports: Vec<FileReport> = files
+        .par_iter()
+        .zip(&scenes)
+        .map(|(f, s)| {
+            let report = check_scene(s, &cfg);
+            bar.inc(1);
+            FileReport { file: f.display().to_string(), report }
+        })
+        .collect();
+    bar.finish_and_clear();
+    let dirty = reports.iter().filter(|r| !r.report.is_clean()).count();
+    if global.json {
+        print_json(&reports)?;
+    } else if global.quiet == 0 {
+        print_text(&summary(&reports, dirty))?;
+    }
+    Ok(if dirty == 0 { ExitStatus::Success } else { ExitStatus::Found })
+}
+
+fn summary(reports: &[FileReport], dirty: usize) -> String {
+    let mut t = String::new();
+    for r in reports {
+        if r.report.is_clean() {
+            t.push_str(&format!("{}: clean ({} frames)\n", r.file, r.report.frames));
+            continue;
+        }
+        let counts: Vec<String> = ViolationKind::ALL
+            .iter()
+            .filter(|&&k| r.report.count(k) > 0)
+            .map(|&k| format!("{} {}", k.name(), r.report.count(k)))
+            .collect();
+        t.push_str(&format!("{}: {} violations ({})\n", r.file, r.report.violations.len(), counts.join(", ")));
+        let mut worst: Vec<_> = r.report.violations.iter().collect();
+        worst.sort_by(|a, b| b.depth.total_cmp(&a.depth));
+        for v in worst.iter().take(5) {
+            let who = [v.human.as_deref(), v.bone.as_deref(), v.object.as_deref(), v.other.as_deref()]
+                .iter()
+                .flatten()
+                .copied()
+                .collect::<Vec<_>>()
+                .join(" / ");
+            let when = v.frame.map(|f| format!(" at frame {f}")).unwrap_or_default();
+            let depth = if v.depth < 0.0 { "nothing below".to_string() } else { format!("{:.3} m", v.depth) };
+            t.push_str(&format!("  {:<15} {who}{when}: {depth}\n", v.kind.name()));
+        }
+    }
+    t.push_str(&format!("{} scenes, {} clean, {} with violations\n", reports.len(), reports.len() - dirty, dirty));
+    t
+}
