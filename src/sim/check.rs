@@ -109,50 +109,88 @@ pub fn capsule_depth(a: DVec3, b: DVec3, radius: f64, solid: &Solid) -> f64 {
 }
 
 /// Bone penetrations of one human, one violation per (bone, solid) episode at its deepest frame.
+///
+/// Per frame, only the solids near the whole body's bounding box are tested against its bones.
 fn penetrations(scene: &Scene, human: &Human, solids: &[Solid], tolerance: f64) -> Vec<Violation> {
     let sk = &human.skeleton;
+    let reach = sk.bones.iter().map(|b| b.radius).fold(0.0, f64::max);
+    let n = solids.len();
+    // Open episodes per (bone, solid): (start frame, worst frame, worst depth).
+    let mut open: Vec<Option<(usize, usize, f64)>> = vec![None; sk.bones.len() * n];
     let mut out = Vec::new();
-    for bone in &sk.bones {
-        let name = format!("{}-{}", sk.joints[bone.a], sk.joints[bone.b]);
-        // Open episodes per solid: (start frame, worst frame, worst depth).
-        let mut open: Vec<Option<(usize, usize, f64)>> = vec![None; solids.len()];
-        let close = |s: usize, ep: (usize, usize, f64), end: usize, out: &mut Vec<Violation>| {
-            out.push(Violation {
-                kind: ViolationKind::Penetration,
-                human: Some(human.id.clone()),
-                bone: Some(name.clone()),
-                object: Some(owner_id(scene, solids[s].owner)),
-                other: None,
-                frame: Some(ep.1),
-                frames: Some([ep.0, end]),
-                depth: ep.2,
-            });
-        };
-        for f in 0..human.frames.len() {
-            let (a, b) = (human.joint_at(f, bone.a), human.joint_at(f, bone.b));
-            let lo = a.min(b) - bone.radius;
-            let hi = a.max(b) + bone.radius;
-            for (s, solid) in solids.iter().enumerate() {
-                let depth = if solid.near(lo, hi, 0.0) { capsule_depth(a, b, bone.radius, solid) } else { 0.0 };
-                match (&mut open[s], depth > tolerance) {
-                    (Some(ep), true) if depth > ep.2 => {
-                        ep.1 = f;
-                        ep.2 = depth;
+    let close = |k: usize, ep: (usize, usize, f64), end: usize, out: &mut Vec<Violation>| {
+        let bone = &sk.bones[k / n];
+        out.push(Violation {
+            kind: ViolationKind::Penetration,
+            human: Some(human.id.clone()),
+            bone: Some(format!("{}-{}", sk.joints[bone.a], sk.joints[bone.b])),
+            object: Some(owner_id(scene, solids[k % n].owner)),
+            other: None,
+            frame: Some(ep.1),
+            frames: Some([ep.0, end]),
+            depth: ep.2,
+        });
+    };
+    let mut near = Vec::with_capacity(n);
+    let mut hit = vec![false; open.len()];
+    let (mut open_keys, mut newly): (Vec<usize>, Vec<usize>) = (Vec::new(), Vec::new());
+    for f in 0..human.frames.len() {
+        let joints: Vec<DVec3> = human.frame(f).collect();
+        let lo = joints.iter().fold(DVec3::splat(f64::INFINITY), |m, &p| m.min(p)) - reach;
+        let hi = joints.iter().fold(DVec3::splat(f64::NEG_INFINITY), |m, &p| m.max(p)) + reach;
+        near.clear();
+        near.extend((0..n).filter(|&s| solids[s].near(lo, hi, 0.0)));
+        for (b, bone) in sk.bones.iter().enumerate() {
+            let (pa, pb) = (joints[bone.a], joints[bone.b]);
+            let (blo, bhi) = (pa.min(pb) - bone.radius, pa.max(pb) + bone.radius);
+            for &s in &near {
+                if !solids[s].near(blo, bhi, 0.0) {
+                    continue;
+                }
+                // The box's signed distance is 1-Lipschitz: if the segment's midpoint is further
+                // than half the segment plus the radius plus the tolerance, no point can be deeper.
+                let mid = (pa + pb) * 0.5;
+                if solids[s].obox.signed_distance(mid) - pa.distance(pb) * 0.5 - bone.radius > -tolerance {
+                    continue;
+                }
+                let depth = capsule_depth(pa, pb, bone.radius, &solids[s]);
+                if depth > tolerance {
+                    let k = b * n + s;
+                    hit[k] = true;
+                    match &mut open[k] {
+                        Some(ep) if depth > ep.2 => {
+                            ep.1 = f;
+                            ep.2 = depth;
+                        }
+                        Some(_) => {}
+                        None => {
+                            open[k] = Some((f, f, depth));
+                            newly.push(k);
+                        }
                     }
-                    (Some(_), true) => {}
-                    (None, true) => open[s] = Some((f, f, depth)),
-                    (Some(_), false) => {
-                        let ep = open[s].take().expect("matched Some");
-                        close(s, ep, f, &mut out);
-                    }
-                    (None, false) => {}
                 }
             }
         }
-        for (s, ep) in open.into_iter().enumerate() {
-            if let Some(ep) = ep {
-                close(s, ep, human.frames.len(), &mut out);
+        open_keys.retain(|&k| {
+            if hit[k] {
+                return true;
             }
+            if let Some(ep) = open[k].take() {
+                close(k, ep, f, &mut out);
+            }
+            false
+        });
+        for &k in &newly {
+            open_keys.push(k);
+        }
+        newly.clear();
+        for &k in &open_keys {
+            hit[k] = false;
+        }
+    }
+    for (k, ep) in open.into_iter().enumerate() {
+        if let Some(ep) = ep {
+            close(k, ep, human.frames.len(), &mut out);
         }
     }
     out
