@@ -136,3 +136,42 @@ fn a_hanging_lamp_and_a_standing_cabinet_are_stable_a_floating_box_is_not() {
     assert_eq!((v.kind, v.object.as_deref()), (ViolationKind::Unstable, Some("o2")));
     assert!(v.depth > 0.9, "it falls about a metre: {}", v.depth);
 }
+
+#[test]
+fn check_command_exit_codes_and_typed_json() {
+    use crate::{shade_sim, stderr};
+    let dir = tempfile::tempdir().unwrap();
+    // Clean: a person on a chair.
+    let mut clean = room();
+    clean.objects.push(object("o0", Category::DiningChair, [2.0, 2.0], [0.45, 0.5, 0.88], 0.0));
+    let h = sitter_on(&clean.objects[0], "h0");
+    clean.humans.push(h);
+    clean.save(dir.path().join("clean.json")).unwrap();
+    let o = shade_sim(&["check", dir.path().join("clean.json").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    // Dirty: the same person on air.
+    let mut air = clean.clone();
+    air.objects.clear();
+    let sub = dir.path().join("more");
+    std::fs::create_dir_all(&sub).unwrap();
+    air.save(sub.join("air.json")).unwrap();
+    let o = shade_sim(&["check", "--json", dir.path().to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    #[derive(serde::Deserialize)]
+    struct FileReport {
+        file: String,
+        violations: Vec<shade_sim::sim::Violation>,
+        frames: usize,
+    }
+    let reports: Vec<FileReport> = serde_json::from_slice(&o.stdout).expect("typed JSON");
+    assert_eq!(reports.len(), 2);
+    assert!(reports[0].file.ends_with("clean.json") && reports[0].violations.is_empty() && reports[0].frames == 10);
+    assert!(reports[1].file.ends_with("more/air.json"));
+    assert_eq!(reports[1].violations[0].kind, ViolationKind::Unsupported);
+    // Bad input: exit 2, one line, nothing checked.
+    std::fs::write(dir.path().join("bad.json"), "{").unwrap();
+    let o = shade_sim(&["check", dir.path().to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(stderr(&o).lines().count(), 1);
+    assert!(o.stdout.is_empty());
+}
