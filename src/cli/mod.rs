@@ -6,6 +6,7 @@
 mod calibrate;
 mod check;
 mod conditions;
+mod eval;
 mod import;
 mod inspect;
 mod output;
@@ -82,6 +83,9 @@ pub enum Command {
     /// Physical validation: penetrations, support, overlaps, walls, floor plan, stability.
     /// Exit 0 clean, 1 violations, 2 bad input.
     Check(check::CheckArgs),
+    /// Metrics of generated scene sets against a reference: contact IoU, Col_mot, R_out, Col_obj,
+    /// CKL, E_pen and physics rates (SHADE's Table 1).
+    Eval(eval::EvalArgs),
     /// Convert the licensed MIME release of 3D-FRONT HUMAN (folders of boxes.npz) to shade-scene/1.
     #[command(name = "import-3dfront-human")]
     Import3dfrontHuman(import::ImportArgs),
@@ -116,6 +120,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
         Command::Synth(args) => synth::run(args, &cli.global),
         Command::Calibrate(args) => calibrate::run(args, &cli.global),
         Command::Check(args) => check::run(args, &cli.global),
+        Command::Eval(args) => eval::run(args, &cli.global),
         Command::Import3dfrontHuman(args) => import::run(args, &cli.global),
     };
     match result {

@@ -1,8 +1,13 @@
-//! Metrics: contact IoU and interpenetration (E_pen) so far; the layout metrics (Col_mot, R_out,
-//! Col_obj, CKL) and the physics rates join with the evaluation command.
+//! Metrics: contact IoU, interpenetration (E_pen), the layout metrics of SHADE's Table 1 (Col_mot,
+//! R_out, Col_obj, CKL) and, in `table`, the evaluation of generated scene sets with the physics
+//! rates.
 
 mod contact;
+mod layout_metrics;
 mod penetration;
+mod table;
 
 pub use contact::{contact_iou, scene_contact_iou};
+pub use layout_metrics::{LayoutCounts, category_frequencies, category_kl};
 pub use penetration::{FurnitureField, SURFACE_POINTS, human_penetration, scene_penetration};
+pub use table::{EvalRow, PhysicsRates, evaluate};

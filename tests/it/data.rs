@@ -206,3 +206,43 @@ fn bad_dataset_inputs_exit_2_with_one_line() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("bad/stats.json: key must be a string"), "{}", stderr(&o));
 }
+
+#[test]
+fn eval_command_prints_table_1_rows_and_calibration_improves_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let raw = dir.path().join("raw");
+    let cal = dir.path().join("cal");
+    for args in [
+        vec!["-q", "synth", "--room", "bedroom", "--scenes", "30", "--seed", "4", "--out", raw.to_str().unwrap()],
+        vec!["-q", "calibrate", "--data", raw.to_str().unwrap(), "--out", cal.to_str().unwrap()],
+    ] {
+        let o = shade_sim(&args);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    }
+    let o = shade_sim(&[
+        "eval",
+        "--json",
+        "--pred",
+        raw.to_str().unwrap(),
+        cal.to_str().unwrap(),
+        "--ref",
+        cal.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let rows: Vec<shade_sim::eval::EvalRow> = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!((rows[0].name.as_str(), rows[1].name.as_str(), rows[0].scenes), ("raw", "cal", 30));
+    assert!(rows[1].contact_iou > rows[0].contact_iou && rows[1].e_pen < rows[0].e_pen);
+    let (p0, p1) = (rows[0].physics.unwrap(), rows[1].physics.unwrap());
+    assert!(p1.penetrating_scenes < p0.penetrating_scenes, "{p0:?} {p1:?}");
+    // Clean procedural layouts: nothing outside, nothing overlapping, walkers never under furniture.
+    assert_eq!((rows[1].r_out, rows[1].col_obj, rows[1].col_mot), (0.0, 0.0, 0.0));
+    let text = shade_sim(&[
+        "eval",
+        "--no-physics",
+        "--pred",
+        raw.join("test").to_str().unwrap(),
+        "--ref",
+        cal.to_str().unwrap(),
+    ]);
+    assert!(crate::stdout(&text).lines().nth(1).unwrap().starts_with("raw/test"), "{}", crate::stdout(&text));
+}

@@ -1,0 +1,125 @@
+//! `shade-sim eval --pred DIR… --ref DIR [--json] [--no-physics]`: SHADE's Table 1 for sets of
+//! generated scenes.
+//!
+//! The reference gives the category frequencies for CKL: its `test` split when it is a dataset,
+//! else all its scenes. Each `--pred` folder is one row.
+
+use super::output::{print_json, print_text};
+use super::{ExitStatus, GlobalArgs};
+use anyhow::Context;
+use clap::Args;
+use rayon::prelude::*;
+use shade_sim::eval::{EvalRow, PhysicsRates, category_frequencies, evaluate};
+use shade_sim::scene::{Action, Scene};
+use shade_sim::sim::{CheckConfig, ViolationKind, check_scene};
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, Args)]
+pub struct EvalArgs {
+    /// Folders of generated scenes, one table row each.
+    #[arg(long, required = true, num_args = 1..)]
+    pub pred: Vec<PathBuf>,
+    /// Reference dataset (its test split) or folder of scenes.
+    #[arg(long = "ref")]
+    pub reference: PathBuf,
+    /// Skip the physics checks (faster).
+    #[arg(long)]
+    pub no_physics: bool,
+}
+
+fn scene_files(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).with_context(|| format!("{}: cannot read folder", d.display()))? {
+            let p = e?.path();
+            let meta = p.file_name().is_some_and(|n| n == "stats.json" || n == "calibration.json");
+            if p.is_dir() {
+                stack.push(p);
+            } else if p.extension().is_some_and(|x| x == "json") && !meta {
+                out.push(p);
+            }
+        }
+    }
+    out.sort();
+    anyhow::ensure!(!out.is_empty(), "{}: no scene files", dir.display());
+    Ok(out)
+}
+
+fn load_all(dir: &Path) -> anyhow::Result<Vec<Scene>> {
+    Ok(scene_files(dir)?.iter().map(Scene::load).collect::<Result<_, _>>()?)
+}
+
+fn physics(scenes: &[Scene]) -> PhysicsRates {
+    let reports: Vec<_> = scenes.par_iter().map(|s| check_scene(s, &CheckConfig::default())).collect();
+    let contact: usize = scenes
+        .iter()
+        .map(|s| {
+            s.humans
+                .iter()
+                .filter(|h| h.actions.iter().any(|a| a.action != Action::Walk && a.action != Action::Stand))
+                .count()
+        })
+        .sum();
+    let objects: usize = scenes.iter().map(|s| s.objects.len()).sum();
+    let rate = |a: usize, b: usize| if b == 0 { 0.0 } else { a as f64 / b as f64 };
+    PhysicsRates {
+        penetrating_scenes: rate(
+            reports.iter().filter(|r| r.count(ViolationKind::Penetration) > 0).count(),
+            scenes.len(),
+        ),
+        unsupported_humans: rate(reports.iter().map(|r| r.count(ViolationKind::Unsupported)).sum(), contact),
+        unstable_objects: rate(reports.iter().map(|r| r.count(ViolationKind::Unstable)).sum(), objects),
+    }
+}
+
+pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
+    let test = args.reference.join("test");
+    let reference = load_all(if test.is_dir() { &test } else { &args.reference })?;
+    let room = reference[0].room_type;
+    let freq = category_frequencies(reference.iter(), room);
+    let mut rows = Vec::new();
+    for dir in &args.pred {
+        let scenes = load_all(dir)?;
+        if let Some(s) = scenes.iter().find(|s| s.room_type != room) {
+            anyhow::bail!("{}: holds {} scenes, the reference is {room}", dir.display(), s.room_type);
+        }
+        // A split folder is named with its dataset: `bedroom-cal/test`.
+        let last = |p: &Path| p.file_name().map(|n| n.to_string_lossy().into_owned());
+        let name = match (last(dir), dir.parent().and_then(last)) {
+            (Some(n), Some(parent)) if ["train", "val", "test"].contains(&n.as_str()) => format!("{parent}/{n}"),
+            (Some(n), _) => n,
+            _ => dir.display().to_string(),
+        };
+        let mut row = evaluate(&name, &scenes, room, &freq);
+        if !args.no_physics {
+            row.physics = Some(physics(&scenes));
+        }
+        rows.push(row);
+    }
+    if global.json {
+        print_json(&rows)?;
+    } else if global.quiet == 0 {
+        print_text(&table(&rows))?;
+    }
+    Ok(ExitStatus::Success)
+}
+
+fn table(rows: &[EvalRow]) -> String {
+    let mut t = String::from(
+        "method               scenes  contact IoU↑  Col_mot↓  R_out↓  Col_obj↓  CKL↓    E_pen↓  pen. scenes↓  unsupported↓  unstable↓\n",
+    );
+    for r in rows {
+        let p = r.physics.map_or_else(
+            || "             -             -          -".to_string(),
+            |p| {
+                format!("  {:>12.3}  {:>12.3}  {:>9.3}", p.penetrating_scenes, p.unsupported_humans, p.unstable_objects)
+            },
+        );
+        t.push_str(&format!(
+            "{:<20} {:>6}  {:>12.3}  {:>8.3}  {:>6.3}  {:>8.3}  {:>6.3}  {:>6.2}{p}\n",
+            r.name, r.scenes, r.contact_iou, r.col_mot, r.r_out, r.col_obj, r.ckl, r.e_pen
+        ));
+    }
+    t
+}
