@@ -5,11 +5,13 @@
 //! furniture templates (`crate::furniture`).
 
 mod check;
+mod replay;
 mod solids;
 mod stability;
 mod violation;
 
 pub use check::{CheckConfig, CheckReport, capsule_depth, check_scene};
+pub use replay::{EngineContact, exact_contacts, rapier_replay};
 pub use solids::{Owner, Solid, WALL_THICKNESS, furniture_solids, pose_of, wall_solids};
 pub use stability::{build_world, unstable_objects};
 pub use violation::{Violation, ViolationKind};

@@ -175,3 +175,40 @@ fn check_command_exit_codes_and_typed_json() {
     assert_eq!(stderr(&o).lines().count(), 1);
     assert!(o.stdout.is_empty());
 }
+
+/// Rapier's contacts, read from a world in which the humans are replayed as kinematic capsules,
+/// agree with the exact depths on shallow penetrations: the same (human, bone, object, frame) and
+/// depths within 5 mm.
+#[test]
+fn rapier_replay_agrees_with_exact_contacts_on_shallow_penetrations() {
+    use shade_sim::sim::{EngineContact, exact_contacts, rapier_replay};
+    let mut s = room();
+    s.objects.push(object("o0", Category::Cabinet, [2.5, 2.05], [0.6, 0.4, 0.5], 0.0));
+    s.objects.push(object("o1", Category::Stool, [1.0, 1.0], [0.4, 0.4, 0.45], 0.0));
+    let mut m = Motion::new(Body::default(), 30.0);
+    // A walker whose right foot and shin graze a low cabinet: shallow contacts only.
+    m.walk(&Polyline::new(vec![DVec2::new(0.5, 2.36), DVec2::new(4.5, 2.36)]).unwrap(), 1.2);
+    s.humans.push(m.into_human("h0"));
+    // A sitter sunk 3 cm into the stool.
+    let mut m = Motion::new(Body::default(), 30.0);
+    m.hold(sit(&Body::default(), DVec2::new(1.0, 0.95), 0.42, 0.0), 5, Action::Sit);
+    s.humans.push(m.into_human("h1"));
+    let tol = 0.005;
+    let exact = exact_contacts(&s, tol);
+    let engine = rapier_replay(&s, tol);
+    let counts = (exact.iter().filter(|c| c.human == 0).count(), exact.iter().filter(|c| c.human == 1).count());
+    assert!(counts.0 > 0 && counts.1 > 0, "both humans touch something: {counts:?}");
+    let key = |c: &EngineContact| (c.human, c.bone, c.owner, c.frame);
+    let find = |list: &[EngineContact], c: &EngineContact| list.iter().find(|d| key(d) == key(c)).map(|d| d.depth);
+    let shallow = |c: &&EngineContact| c.depth > tol + 0.01 && c.depth < 0.08;
+    let mut compared = 0;
+    for c in exact.iter().filter(shallow) {
+        let d = find(&engine, c).unwrap_or_else(|| panic!("Rapier misses {c:?}"));
+        assert!((d - c.depth).abs() < 0.005, "{c:?}: Rapier {d}");
+        compared += 1;
+    }
+    for c in engine.iter().filter(shallow) {
+        assert!(find(&exact, c).is_some(), "Rapier reports {c:?}, exact geometry does not");
+    }
+    assert!(compared >= 5, "{compared} shallow contacts compared");
+}

@@ -1,0 +1,121 @@
+//! The humans replayed in a Rapier world, frame by frame: each bone a kinematic capsule, the
+//! furniture and walls fixed. After posing the bones, the collision pipeline runs and the
+//! narrow phase's deepest contacts are read.
+//!
+//! This is the engine-side view of penetration, used to cross-check the exact analytic depths of
+//! `check` (engines agree with exact geometry on shallow overlaps; their depths saturate on deep
+//! ones) and, with the `mujoco` feature, MuJoCo's.
+
+use super::solids::{Owner, furniture_solids, wall_solids};
+use crate::scene::Scene;
+use glam::{Quat, Vec3};
+use rapier3d::prelude::*;
+use std::collections::HashMap;
+
+/// A bone in contact with furniture or a wall in one frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EngineContact {
+    /// Index of the human in the scene.
+    pub human: usize,
+    /// Index of the bone in its skeleton.
+    pub bone: usize,
+    /// What it touches.
+    pub owner: Owner,
+    /// The frame.
+    pub frame: usize,
+    /// Penetration depth the engine reports (m, positive).
+    pub depth: f64,
+}
+
+/// Replays every human of `scene` in a Rapier world and returns the contacts deeper than
+/// `tolerance`, frame by frame.
+pub fn rapier_replay(scene: &Scene, tolerance: f64) -> Vec<EngineContact> {
+    let mut world = PhysicsWorld::default();
+    let mut owners: HashMap<ColliderHandle, Owner> = HashMap::new();
+    for solid in furniture_solids(scene).into_iter().chain(wall_solids(scene)) {
+        let h = solid.shape.half_extents;
+        let (_, c) = world.insert(RigidBodyBuilder::fixed().pose(solid.pose), ColliderBuilder::cuboid(h.x, h.y, h.z));
+        owners.insert(c, solid.owner);
+    }
+    // One kinematic body per bone, its capsule along the body's z axis.
+    let mut bones: HashMap<ColliderHandle, (usize, usize)> = HashMap::new();
+    let mut bodies: Vec<Vec<RigidBodyHandle>> = Vec::new();
+    for (hi, human) in scene.humans.iter().enumerate() {
+        let mut handles = Vec::new();
+        for (bi, bone) in human.skeleton.bones.iter().enumerate() {
+            let half = (human.joint_at(0, bone.a).distance(human.joint_at(0, bone.b)) * 0.5) as f32;
+            let collider = ColliderBuilder::capsule_z(half.max(1e-4), bone.radius as f32)
+                .active_collision_types(ActiveCollisionTypes::all());
+            let (b, c) = world.insert(RigidBodyBuilder::kinematic_position_based(), collider);
+            bones.insert(c, (hi, bi));
+            handles.push(b);
+        }
+        bodies.push(handles);
+    }
+    let frames = scene.humans.iter().map(|h| h.frames.len()).max().unwrap_or(0);
+    let mut out = Vec::new();
+    for f in 0..frames {
+        for (hi, human) in scene.humans.iter().enumerate() {
+            let frame = f.min(human.frames.len() - 1);
+            for (bi, bone) in human.skeleton.bones.iter().enumerate() {
+                let (a, b) = (human.joint_at(frame, bone.a).as_vec3(), human.joint_at(frame, bone.b).as_vec3());
+                let dir = (b - a).normalize_or(Vec3::Z);
+                let pose = Pose::from_parts((a + b) * 0.5, Quat::from_rotation_arc(Vec3::Z, dir));
+                world.bodies[bodies[hi][bi]].set_position(pose, true);
+            }
+        }
+        world.detect_collisions(&(), &());
+        for pair in world.contact_pairs() {
+            let (bone, owner) = match (
+                bones.get(&pair.collider1),
+                owners.get(&pair.collider2),
+                bones.get(&pair.collider2),
+                owners.get(&pair.collider1),
+            ) {
+                (Some(b), Some(o), _, _) | (_, _, Some(b), Some(o)) => (*b, *o),
+                _ => continue,
+            };
+            if let Some((_, contact)) = pair.find_deepest_contact() {
+                let depth = -contact.dist as f64;
+                let human = &scene.humans[bone.0];
+                if depth > tolerance && f < human.frames.len() {
+                    out.push(EngineContact { human: bone.0, bone: bone.1, owner, frame: f, depth });
+                }
+            }
+        }
+    }
+    out.sort_by(|a, b| (a.frame, a.human, a.bone, a.owner).cmp(&(b.frame, b.human, b.bone, b.owner)));
+    out
+}
+
+/// The same contacts computed exactly (parry's capsule–box contact on every bone, solid and frame):
+/// the reference the engines are compared with.
+pub fn exact_contacts(scene: &Scene, tolerance: f64) -> Vec<EngineContact> {
+    let solids: Vec<_> = furniture_solids(scene).into_iter().chain(wall_solids(scene)).collect();
+    let mut out = Vec::new();
+    for (hi, human) in scene.humans.iter().enumerate() {
+        for f in 0..human.frames.len() {
+            for (bi, bone) in human.skeleton.bones.iter().enumerate() {
+                let (a, b) = (human.joint_at(f, bone.a), human.joint_at(f, bone.b));
+                // Deepest solid per owner, like the engine's deepest contact per collider pair.
+                let mut best: HashMap<Owner, f64> = HashMap::new();
+                for s in &solids {
+                    let d = super::capsule_depth(a, b, bone.radius, s);
+                    if d > tolerance {
+                        let e = best.entry(s.owner).or_insert(0.0);
+                        *e = e.max(d);
+                    }
+                }
+                out.extend(best.into_iter().map(|(owner, depth)| EngineContact {
+                    human: hi,
+                    bone: bi,
+                    owner,
+                    frame: f,
+                    depth,
+                }));
+            }
+        }
+    }
+    out.sort_by(|a, b| (a.frame, a.human, a.bone, a.owner).cmp(&(b.frame, b.human, b.bone, b.owner)));
+    out
+}
