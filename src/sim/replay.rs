@@ -84,7 +84,7 @@ pub fn rapier_replay(scene: &Scene, tolerance: f64) -> Vec<EngineContact> {
             }
         }
     }
-    out.sort_by(|a, b| (a.frame, a.human, a.bone, a.owner).cmp(&(b.frame, b.human, b.bone, b.owner)));
+    sort_contacts(&mut out);
     out
 }
 
@@ -116,6 +116,11 @@ pub fn exact_contacts(scene: &Scene, tolerance: f64) -> Vec<EngineContact> {
             }
         }
     }
-    out.sort_by(|a, b| (a.frame, a.human, a.bone, a.owner).cmp(&(b.frame, b.human, b.bone, b.owner)));
+    sort_contacts(&mut out);
     out
+}
+
+/// Frame, human, bone, then owner order.
+fn sort_contacts(contacts: &mut [EngineContact]) {
+    contacts.sort_by_key(|c| (c.frame, c.human, c.bone, c.owner));
 }
