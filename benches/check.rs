@@ -1,10 +1,12 @@
 //! Speed of the physical check: a 300-frame, 19-capsule walking motion against 20 pieces of
 //! furniture (MuJoCo from Python: 3.2–3.9 ms on this machine; a brute-force analytic C checker:
-//! 0.84 ms; target ≤ 0.5 ms). Also the full check with the 2 s Rapier stability simulation.
+//! 0.84 ms; target ≤ 0.5 ms). Also the full check with the 2 s Rapier stability simulation, the
+//! replay in a Rapier world and, with the `mujoco` feature, in MuJoCo; the ratios to our check
+//! are printed at the end of the run.
 //!
-//! Run: `cargo bench --bench check`
+//! Run: `cargo bench --bench check --features mujoco` (after `bash scripts/setup_mujoco.sh`)
 
-use criterion::{Criterion, criterion_group, criterion_main};
+use criterion::{Criterion, criterion_group};
 use glam::DVec2;
 use shade_sim::geom::Polyline;
 use shade_sim::human::{Body, Motion};
@@ -55,6 +57,52 @@ fn bench(c: &mut Criterion) {
     let fast = CheckConfig { stability: false, ..CheckConfig::default() };
     c.bench_function("check/300_frames_19_capsules_20_objects", |b| b.iter(|| check_scene(black_box(&s), &fast)));
     c.bench_function("check/with_stability_2s", |b| b.iter(|| check_scene(black_box(&s), &CheckConfig::default())));
+    c.bench_function("replay/rapier_world", |b| b.iter(|| shade_sim::sim::rapier_replay(black_box(&s), 0.02)));
+    #[cfg(feature = "mujoco")]
+    c.bench_function("replay/mujoco", |b| b.iter(|| shade_sim::sim::mujoco_replay(black_box(&s), 0.02)));
+}
+
+/// Median seconds of `f` over `n` runs.
+fn median(n: usize, mut f: impl FnMut()) -> f64 {
+    let mut t: Vec<f64> = (0..n)
+        .map(|_| {
+            let start = std::time::Instant::now();
+            f();
+            start.elapsed().as_secs_f64()
+        })
+        .collect();
+    t.sort_by(f64::total_cmp);
+    t[n / 2]
+}
+
+/// Prints the ratios of the engine replays to our check, measured in the same run.
+fn ratios() {
+    let s = scene();
+    let fast = CheckConfig { stability: false, ..CheckConfig::default() };
+    let ours = median(51, || {
+        black_box(check_scene(&s, &fast));
+    });
+    let rapier = median(21, || {
+        black_box(shade_sim::sim::rapier_replay(&s, 0.02));
+    });
+    println!(
+        "ratio: rapier world replay / our check = {:.1} ({:.3} ms vs {:.3} ms)",
+        rapier / ours,
+        rapier * 1e3,
+        ours * 1e3
+    );
+    #[cfg(feature = "mujoco")]
+    {
+        let mujoco = median(21, || {
+            black_box(shade_sim::sim::mujoco_replay(&s, 0.02).expect("the model loads"));
+        });
+        println!(
+            "ratio: mujoco replay / our check = {:.1} ({:.3} ms vs {:.3} ms)",
+            mujoco / ours,
+            mujoco * 1e3,
+            ours * 1e3
+        );
+    }
 }
 
 criterion_group! {
@@ -62,4 +110,8 @@ criterion_group! {
     config = Criterion::default().sample_size(20).measurement_time(std::time::Duration::from_secs(3));
     targets = bench
 }
-criterion_main!(benches);
+fn main() {
+    benches();
+    ratios();
+    Criterion::default().configure_from_args().final_summary();
+}

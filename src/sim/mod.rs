@@ -5,12 +5,16 @@
 //! furniture templates (`crate::furniture`).
 
 mod check;
+#[cfg(feature = "mujoco")]
+mod mujoco;
 mod replay;
 mod solids;
 mod stability;
 mod violation;
 
 pub use check::{CheckConfig, CheckReport, capsule_depth, check_scene};
+#[cfg(feature = "mujoco")]
+pub use mujoco::{mujoco_replay, replay_mjcf};
 pub use replay::{EngineContact, exact_contacts, rapier_replay};
 pub use solids::{Owner, Solid, WALL_THICKNESS, furniture_solids, pose_of, wall_solids};
 pub use stability::{build_world, unstable_objects};

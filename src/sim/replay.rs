@@ -121,6 +121,6 @@ pub fn exact_contacts(scene: &Scene, tolerance: f64) -> Vec<EngineContact> {
 }
 
 /// Frame, human, bone, then owner order.
-fn sort_contacts(contacts: &mut [EngineContact]) {
+pub(crate) fn sort_contacts(contacts: &mut [EngineContact]) {
     contacts.sort_by_key(|c| (c.frame, c.human, c.bone, c.owner));
 }

@@ -176,12 +176,8 @@ fn check_command_exit_codes_and_typed_json() {
     assert!(o.stdout.is_empty());
 }
 
-/// Rapier's contacts, read from a world in which the humans are replayed as kinematic capsules,
-/// agree with the exact depths on shallow penetrations: the same (human, bone, object, frame) and
-/// depths within 5 mm.
-#[test]
-fn rapier_replay_agrees_with_exact_contacts_on_shallow_penetrations() {
-    use shade_sim::sim::{EngineContact, exact_contacts, rapier_replay};
+/// A walker grazing a low cabinet and a sitter sunk 3 cm into a stool: shallow contacts.
+fn grazing_scene() -> Scene {
     let mut s = room();
     s.objects.push(object("o0", Category::Cabinet, [2.5, 2.05], [0.6, 0.4, 0.5], 0.0));
     s.objects.push(object("o1", Category::Stool, [1.0, 1.0], [0.4, 0.4, 0.45], 0.0));
@@ -193,9 +189,14 @@ fn rapier_replay_agrees_with_exact_contacts_on_shallow_penetrations() {
     let mut m = Motion::new(Body::default(), 30.0);
     m.hold(sit(&Body::default(), DVec2::new(1.0, 0.95), 0.42, 0.0), 5, Action::Sit);
     s.humans.push(m.into_human("h1"));
-    let tol = 0.005;
-    let exact = exact_contacts(&s, tol);
-    let engine = rapier_replay(&s, tol);
+    s
+}
+
+/// Engine contacts agree with the exact depths on shallow penetrations: the same (human, bone,
+/// object, frame) and depths within 5 mm, both ways.
+fn agrees_on_shallow(s: &Scene, engine: &[shade_sim::sim::EngineContact], tol: f64) {
+    use shade_sim::sim::{EngineContact, exact_contacts};
+    let exact = exact_contacts(s, tol);
     let counts = (exact.iter().filter(|c| c.human == 0).count(), exact.iter().filter(|c| c.human == 1).count());
     assert!(counts.0 > 0 && counts.1 > 0, "both humans touch something: {counts:?}");
     let key = |c: &EngineContact| (c.human, c.bone, c.owner, c.frame);
@@ -203,12 +204,38 @@ fn rapier_replay_agrees_with_exact_contacts_on_shallow_penetrations() {
     let shallow = |c: &&EngineContact| c.depth > tol + 0.01 && c.depth < 0.08;
     let mut compared = 0;
     for c in exact.iter().filter(shallow) {
-        let d = find(&engine, c).unwrap_or_else(|| panic!("Rapier misses {c:?}"));
-        assert!((d - c.depth).abs() < 0.005, "{c:?}: Rapier {d}");
+        let d = find(engine, c).unwrap_or_else(|| panic!("the engine misses {c:?}"));
+        assert!((d - c.depth).abs() < 0.005, "{c:?}: the engine says {d}");
         compared += 1;
     }
     for c in engine.iter().filter(shallow) {
-        assert!(find(&exact, c).is_some(), "Rapier reports {c:?}, exact geometry does not");
+        assert!(find(&exact, c).is_some(), "the engine reports {c:?}, exact geometry does not");
     }
     assert!(compared >= 5, "{compared} shallow contacts compared");
+}
+
+#[test]
+fn rapier_replay_agrees_with_exact_contacts_on_shallow_penetrations() {
+    let s = grazing_scene();
+    agrees_on_shallow(&s, &shade_sim::sim::rapier_replay(&s, 0.005), 0.005);
+}
+
+#[cfg(feature = "mujoco")]
+#[test]
+fn mujoco_replay_agrees_with_exact_contacts_and_with_rapier() {
+    let s = grazing_scene();
+    let mujoco = shade_sim::sim::mujoco_replay(&s, 0.005).expect("the replay model loads in MuJoCo");
+    agrees_on_shallow(&s, &mujoco, 0.005);
+    // The same penetrating (human, bone, object) pairs as Rapier, for shallow contacts.
+    let rapier = shade_sim::sim::rapier_replay(&s, 0.005);
+    let pairs = |v: &[shade_sim::sim::EngineContact], lo: f64| {
+        v.iter()
+            .filter(|c| c.depth > lo && c.depth < 0.08)
+            .map(|c| (c.human, c.bone, c.owner))
+            .collect::<std::collections::BTreeSet<_>>()
+    };
+    let (m, r) = (pairs(&mujoco, 0.015), pairs(&rapier, 0.015));
+    assert!(!m.is_empty() && !r.is_empty());
+    assert!(m.is_subset(&pairs(&rapier, 0.005)), "MuJoCo {m:?} vs Rapier {r:?}");
+    assert!(r.is_subset(&pairs(&mujoco, 0.005)), "Rapier {r:?} vs MuJoCo {m:?}");
 }
