@@ -1,4 +1,4 @@
-//! `shade-sim eval --pred DIR… --ref DIR [--json] [--no-physics]`: SHADE's Table 1 for sets of
+//! `shade-sim eval --pred DIR… --ref DIR [--json] [--no-physics] [--out FILE]`: SHADE's Table 1 for sets of
 //! generated scenes.
 //!
 //! The reference gives the category frequencies for CKL: its `test` split when it is a dataset,
@@ -25,6 +25,9 @@ pub struct EvalArgs {
     /// Skip the physics checks (faster).
     #[arg(long)]
     pub no_physics: bool,
+    /// Also write the rows as JSON to this file (atomically).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
 }
 
 fn scene_files(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
@@ -96,6 +99,12 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
             row.physics = Some(physics(&scenes));
         }
         rows.push(row);
+    }
+    if let Some(out) = &args.out {
+        let mut text = serde_json::to_string_pretty(&rows)?;
+        text.push('\n');
+        shade_sim::scene::write_atomic(out, text.as_bytes())
+            .with_context(|| format!("{}: cannot write", out.display()))?;
     }
     if global.json {
         print_json(&rows)?;
