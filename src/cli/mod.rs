@@ -7,6 +7,7 @@ mod calibrate;
 mod check;
 mod conditions;
 mod eval;
+mod export;
 mod import;
 mod inspect;
 mod output;
@@ -86,6 +87,9 @@ pub enum Command {
     /// Metrics of generated scene sets against a reference: contact IoU, Col_mot, R_out, Col_obj,
     /// CKL, E_pen and physics rates (SHADE's Table 1).
     Eval(eval::EvalArgs),
+    /// Export a scene: a MuJoCo world (MJCF) with the humans as mocap bodies and their motion
+    /// as keyframes.
+    Export(export::ExportArgs),
     /// Convert the licensed MIME release of 3D-FRONT HUMAN (folders of boxes.npz) to shade-scene/1.
     #[command(name = "import-3dfront-human")]
     Import3dfrontHuman(import::ImportArgs),
@@ -121,6 +125,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
         Command::Calibrate(args) => calibrate::run(args, &cli.global),
         Command::Check(args) => check::run(args, &cli.global),
         Command::Eval(args) => eval::run(args, &cli.global),
+        Command::Export(args) => export::run(args, &cli.global),
         Command::Import3dfrontHuman(args) => import::run(args, &cli.global),
     };
     match result {

@@ -1,5 +1,5 @@
-//! Furniture knowledge shared by every part of shade-sim: real dimensions per category and the
-//! shape templates (parts fitted to a bounding box, support surfaces).
+//! Furniture knowledge shared by every part of shade-sim: real dimensions per category, the
+//! shape templates (parts fitted to a bounding box, support surfaces) and the room's walls.
 //!
 //! DESIGN.md puts the templates in `sim`; they live here, in the base, because the dataset
 //! (placing people on seats), the physics worlds, the MJCF export and E_pen all need the same
@@ -7,6 +7,8 @@
 
 mod catalog;
 mod template;
+mod walls;
 
 pub use catalog::{CatalogItem, catalog_items};
 pub use template::{Part, PartRole, Surface, Template, template, template_of};
+pub use walls::{WALL_THICKNESS, wall_boxes};

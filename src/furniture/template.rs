@@ -16,7 +16,7 @@ use crate::scene::{Category, Group, Object};
 use glam::{DVec2, DVec3};
 
 /// What a part is for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum PartRole {
     /// A bed's base and mattress, a sofa's seat block, a stool's seat.
     Seat,

@@ -3,15 +3,12 @@
 //!
 //! Walls are 10 cm thick boxes standing outside each floor-plan edge, as tall as the room.
 
-use crate::furniture::template;
+use crate::furniture::{template, wall_boxes};
 use crate::geom::OBox;
 use crate::scene::Scene;
-use glam::{DVec2, DVec3, Quat, Vec3};
+use glam::{DVec3, Quat, Vec3};
 use rapier3d::parry::math::Pose;
 use rapier3d::parry::shape::Cuboid;
-
-/// Wall thickness (m).
-pub const WALL_THICKNESS: f64 = 0.1;
 
 /// What a solid belongs to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -80,24 +77,5 @@ pub fn furniture_solids(scene: &Scene) -> Vec<Solid> {
 
 /// One wall box per floor-plan edge, outside the floor.
 pub fn wall_solids(scene: &Scene) -> Vec<Solid> {
-    let h = scene.floor_plan.height;
-    scene
-        .floor_plan
-        .polygon()
-        .edges()
-        .enumerate()
-        .filter_map(|(i, (a, b))| {
-            let len = a.distance(b);
-            if len == 0.0 {
-                return None;
-            }
-            let dir = (b - a) / len;
-            let outward = DVec2::new(dir.y, -dir.x);
-            let center = (a + b) * 0.5 + outward * (WALL_THICKNESS * 0.5);
-            let yaw = dir.y.atan2(dir.x);
-            // Exactly the edge: extended walls would poke into the room at inner corners.
-            let size = DVec3::new(len, WALL_THICKNESS, h);
-            Some(Solid::new(Owner::Wall(i), OBox::new(center.extend(h * 0.5), size, yaw)))
-        })
-        .collect()
+    wall_boxes(scene).into_iter().map(|(i, b)| Solid::new(Owner::Wall(i), b)).collect()
 }

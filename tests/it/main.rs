@@ -5,6 +5,7 @@ mod cli;
 mod conditions;
 mod data;
 mod examples;
+mod export;
 mod geom_props;
 mod import;
 mod scene_io;

@@ -1,0 +1,218 @@
+//! A scene as a complete MuJoCo world (MJCF): floor, walls, furniture bodies made of their template
+//! parts with per-category materials, and each human as mocap bodies (one per bone, a capsule each)
+//! whose motion is a keyframe sequence (`<key mpos mquat>` per frame).
+//!
+//! Furniture is static by default; with `free_furniture` each piece gets a free joint and a mass
+//! from its parts' volume at 300 kg/m³. MuJoCo reports no contacts between mocap bodies and bodies
+//! without joints, so for static furniture the world lists a `<contact><pair>` for every bone–part
+//! pair. The text is deterministic: stable order, fixed precision, names from the scene's ids
+//! (`o3`, `o3_seat`, `h1_left_knee-left_ankle`).
+
+use crate::furniture::{PartRole, template, wall_boxes};
+use crate::scene::{Group, Scene};
+use glam::{DQuat, DVec3};
+use std::fmt::Write;
+
+/// Options of the export.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct MjcfOptions {
+    /// Give furniture free joints (dynamic) instead of fixing it to the world.
+    pub free_furniture: bool,
+}
+
+fn v3(v: DVec3) -> String {
+    format!("{} {} {}", num(v.x), num(v.y), num(v.z))
+}
+
+/// Fixed precision, no negative zero.
+fn num(x: f64) -> String {
+    let s = format!("{x:.5}");
+    let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
+    if s == "-0" || s.is_empty() { "0".into() } else { s }
+}
+
+fn quat(q: DQuat) -> String {
+    format!("{} {} {} {}", num(q.w), num(q.x), num(q.y), num(q.z))
+}
+
+/// Material name of a category group.
+fn material(group: Group) -> &'static str {
+    match group {
+        Group::Bed => "bed",
+        Group::Chair | Group::Stool => "seat",
+        Group::Sofa => "sofa",
+        Group::Table => "wood",
+        Group::Cabinet | Group::Shelf => "storage",
+        Group::Lamp => "lamp",
+    }
+}
+
+fn role_name(role: PartRole) -> &'static str {
+    match role {
+        PartRole::Seat => "seat",
+        PartRole::Back => "back",
+        PartRole::Arm => "arm",
+        PartRole::Leg => "leg",
+        PartRole::Top => "top",
+        PartRole::Body => "body",
+        PartRole::Panel => "panel",
+        PartRole::Shade => "shade",
+        PartRole::Cord => "cord",
+    }
+}
+
+/// Bone name `pelvis-spine`.
+fn bone_name(scene: &Scene, h: usize, b: usize) -> String {
+    let human = &scene.humans[h];
+    let bone = &human.skeleton.bones[b];
+    format!("{}_{}-{}", human.id, human.skeleton.joints[bone.a], human.skeleton.joints[bone.b])
+}
+
+/// Pose of a bone's mocap body in frame `f`: its midpoint, its z axis along the bone.
+fn bone_pose(scene: &Scene, h: usize, b: usize, f: usize) -> (DVec3, DQuat) {
+    let human = &scene.humans[h];
+    let f = f.min(human.frames.len() - 1);
+    let bone = &human.skeleton.bones[b];
+    let (p, q) = (human.joint_at(f, bone.a), human.joint_at(f, bone.b));
+    ((p + q) * 0.5, DQuat::from_rotation_arc(DVec3::Z, (q - p).normalize_or(DVec3::Z)))
+}
+
+/// The MJCF text of `scene`.
+pub fn scene_mjcf(scene: &Scene, opts: MjcfOptions) -> String {
+    let mut x = String::new();
+    let (lo, hi) = scene.floor_plan.polygon().bounds();
+    let mid = (lo + hi) * 0.5;
+    let half = (hi - lo) * 0.5 + 1.0;
+    let _ = writeln!(x, "<mujoco model=\"shade-sim {} scene\">", scene.room_type);
+    x.push_str("  <compiler angle=\"radian\" autolimits=\"true\"/>\n");
+    x.push_str("  <option timestep=\"0.002\" gravity=\"0 0 -9.81\"/>\n");
+    x.push_str("  <default>\n    <geom friction=\"0.7 0.005 0.0001\"/>\n  </default>\n");
+    x.push_str("  <asset>\n");
+    x.push_str("    <texture name=\"grid\" type=\"2d\" builtin=\"checker\" rgb1=\"0.82 0.78 0.72\" rgb2=\"0.76 0.72 0.66\" width=\"256\" height=\"256\"/>\n");
+    x.push_str("    <material name=\"floor\" texture=\"grid\" texrepeat=\"8 8\"/>\n");
+    for (name, rgba) in [
+        ("wall", "0.9 0.9 0.87 1"),
+        ("bed", "0.55 0.45 0.75 1"),
+        ("seat", "0.85 0.55 0.25 1"),
+        ("sofa", "0.45 0.6 0.8 1"),
+        ("wood", "0.6 0.42 0.26 1"),
+        ("storage", "0.7 0.7 0.66 1"),
+        ("lamp", "0.95 0.92 0.6 1"),
+        ("human", "0.9 0.7 0.55 1"),
+    ] {
+        let _ = writeln!(x, "    <material name=\"{name}\" rgba=\"{rgba}\"/>");
+    }
+    x.push_str("  </asset>\n  <worldbody>\n");
+    let _ = writeln!(
+        x,
+        "    <light name=\"sun\" pos=\"{} {} {}\" dir=\"0 0 -1\" directional=\"true\"/>",
+        num(mid.x),
+        num(mid.y),
+        num(scene.floor_plan.height + 2.0)
+    );
+    let _ = writeln!(
+        x,
+        "    <geom name=\"floor\" type=\"plane\" pos=\"{} {} 0\" size=\"{} {} 0.1\" material=\"floor\"/>",
+        num(mid.x),
+        num(mid.y),
+        num(half.x),
+        num(half.y)
+    );
+    for (i, w) in wall_boxes(scene) {
+        let _ = writeln!(
+            x,
+            "    <geom name=\"wall{i}\" type=\"box\" pos=\"{}\" quat=\"{}\" size=\"{}\" material=\"wall\" rgba=\"0.9 0.9 0.87 0.35\"/>",
+            v3(w.center),
+            quat(DQuat::from_rotation_z(w.yaw)),
+            v3(w.half())
+        );
+    }
+    let mut static_parts = Vec::new();
+    for o in &scene.objects {
+        let b = o.obox();
+        let free = opts.free_furniture && !o.category.is_hanging();
+        let _ = writeln!(
+            x,
+            "    <body name=\"{}\" pos=\"{}\" quat=\"{}\">",
+            o.id,
+            v3(b.center),
+            quat(DQuat::from_rotation_z(b.yaw))
+        );
+        if free {
+            let _ = writeln!(x, "      <freejoint name=\"{}_free\"/>", o.id);
+        }
+        let mut roles = std::collections::BTreeMap::new();
+        for p in template(o).parts {
+            let k = roles.entry(p.role).or_insert(0usize);
+            let name = format!("{}_{}{}", o.id, role_name(p.role), if *k > 0 { k.to_string() } else { String::new() });
+            *k += 1;
+            let local = b.to_local(p.obox.center);
+            let density = if free { " density=\"300\"" } else { "" };
+            let _ = writeln!(
+                x,
+                "      <geom name=\"{name}\" type=\"box\" pos=\"{}\" size=\"{}\" material=\"{}\"{density}/>",
+                v3(local),
+                v3(p.obox.half()),
+                material(o.category.group())
+            );
+            if !free {
+                static_parts.push(name);
+            }
+        }
+        x.push_str("    </body>\n");
+    }
+    let mut bones = Vec::new();
+    for (h, human) in scene.humans.iter().enumerate() {
+        for (b, bone) in human.skeleton.bones.iter().enumerate() {
+            let name = bone_name(scene, h, b);
+            let (pos, q) = bone_pose(scene, h, b, 0);
+            let half = human.joint_at(0, bone.a).distance(human.joint_at(0, bone.b)) * 0.5;
+            let _ = writeln!(
+                x,
+                "    <body name=\"{name}\" mocap=\"true\" pos=\"{}\" quat=\"{}\"><geom name=\"{name}\" type=\"capsule\" fromto=\"0 0 {} 0 0 {}\" size=\"{}\" material=\"human\"/></body>",
+                v3(pos),
+                quat(q),
+                num(-half.max(1e-4)),
+                num(half.max(1e-4)),
+                num(bone.radius)
+            );
+            bones.push(name);
+        }
+    }
+    x.push_str("  </worldbody>\n");
+    if !bones.is_empty() && !static_parts.is_empty() {
+        x.push_str("  <contact>\n");
+        for b in &bones {
+            for p in &static_parts {
+                let _ = writeln!(x, "    <pair geom1=\"{b}\" geom2=\"{p}\"/>");
+            }
+        }
+        x.push_str("  </contact>\n");
+    }
+    let frames = scene.humans.iter().map(|h| h.frames.len()).max().unwrap_or(0);
+    if !bones.is_empty() {
+        x.push_str("  <keyframe>\n");
+        for f in 0..frames {
+            let mut mpos = Vec::new();
+            let mut mquat = Vec::new();
+            for (h, human) in scene.humans.iter().enumerate() {
+                for b in 0..human.skeleton.bones.len() {
+                    let (p, q) = bone_pose(scene, h, b, f);
+                    mpos.push(v3(p));
+                    mquat.push(quat(q));
+                }
+            }
+            let fps = scene.humans.first().map_or(30.0, |h| h.fps);
+            let _ = writeln!(
+                x,
+                "    <key name=\"frame{f}\" time=\"{}\" mpos=\"{}\" mquat=\"{}\"/>",
+                num(f as f64 / fps),
+                mpos.join(" "),
+                mquat.join(" ")
+            );
+        }
+        x.push_str("  </keyframe>\n");
+    }
+    x.push_str("</mujoco>\n");
+    x
+}
