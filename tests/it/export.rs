@@ -1,7 +1,7 @@
 //! MJCF export: deterministic text, names from ids, and the real MuJoCo (Rust and Python) loading
 //! and stepping the worlds.
 
-use crate::{shade_sim, stderr};
+use crate::shade_sim;
 use shade_sim::data::generate_room;
 use shade_sim::export::{MjcfOptions, scene_mjcf};
 use shade_sim::scene::RoomType;
@@ -69,7 +69,7 @@ fn export_command_validates_and_python_mujoco_loads_the_file() {
         xml.to_str().unwrap(),
         "--validate",
     ]);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_eq!(o.status.code(), Some(0), "{}", crate::stderr(&o));
     // The Python package installed by scripts/setup_mujoco.sh: load, replay the keyframes, step.
     let python = crate::root().join(".venv-mujoco/bin/python");
     let script = r#"
