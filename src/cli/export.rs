@@ -1,4 +1,4 @@
-//! `shade-sim export SCENE --format mjcf --out scene.xml [--free-furniture] [--validate]`.
+//! `shade-sim export SCENE --format mjcf|png --out FILE [--free-furniture] [--validate]`.
 
 use super::output::{print_json, print_text};
 use super::{ExitStatus, GlobalArgs};
@@ -13,6 +13,8 @@ use std::path::PathBuf;
 pub enum Format {
     /// A MuJoCo world (MJCF XML) with the humans' motion as keyframes.
     Mjcf,
+    /// A top-down plan (PNG): floor, labelled furniture, walking paths, contact humans, scale.
+    Png,
 }
 
 #[derive(Debug, Args)]
@@ -45,14 +47,22 @@ struct Report {
 
 pub fn run(args: &ExportArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     let scene = Scene::load(&args.scene)?;
-    let Format::Mjcf = args.format;
-    let text = scene_mjcf(&scene, MjcfOptions { free_furniture: args.free_furniture });
-    let validation = if args.validate { Some(validate(&scene, &text, &args.out)?) } else { None };
-    write_atomic(&args.out, text.as_bytes()).with_context(|| format!("{}: cannot write", args.out.display()))?;
+    let (bytes, validation) = match args.format {
+        Format::Mjcf => {
+            let text = scene_mjcf(&scene, MjcfOptions { free_furniture: args.free_furniture });
+            let validation = if args.validate { Some(validate(&scene, &text, &args.out)?) } else { None };
+            (text.into_bytes(), validation)
+        }
+        Format::Png => {
+            anyhow::ensure!(!args.validate, "{}: --validate applies to --format mjcf", args.out.display());
+            (shade_sim::export::render_plan(&scene).png_bytes(), None)
+        }
+    };
+    write_atomic(&args.out, &bytes).with_context(|| format!("{}: cannot write", args.out.display()))?;
     let report = Report {
         scene: args.scene.display().to_string(),
         out: args.out.display().to_string(),
-        bytes: text.len(),
+        bytes: bytes.len(),
         validation,
     };
     if global.json {

@@ -24,6 +24,11 @@ pub struct Object {
 }
 
 impl Object {
+    /// Centre of the bounding box as a vector.
+    pub fn center(&self) -> DVec3 {
+        DVec3::from(self.center)
+    }
+
     /// The object's oriented bounding box.
     pub fn obox(&self) -> OBox {
         OBox::new(DVec3::from(self.center), DVec3::from(self.size), self.yaw)

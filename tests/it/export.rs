@@ -96,3 +96,34 @@ fn export_without_the_feature_or_with_bad_input_exits_2() {
     assert_eq!(o.status.code(), Some(2));
     assert!(!dir.path().join("x.xml").exists());
 }
+
+#[test]
+fn plan_png_shows_furniture_in_its_colour() {
+    use shade_sim::export::{group_color, render_plan};
+    let s = generate_room(RoomType::Bedroom, 3, 5, false).scene;
+    let bed =
+        s.objects.iter().find(|o| o.category.group() == shade_sim::scene::Group::Bed).expect("bedrooms have a bed");
+    let image = render_plan(&s).into_image();
+    // Sample the bed a quarter of the way along its depth from the centre, away from its label and
+    // from people lying on it: at least some of those pixels carry the bed's colour.
+    let polygon = s.floor_plan.polygon();
+    let (min, max) = polygon.bounds();
+    let scale = (900.0 - 80.0) / (max - min).max_element();
+    let b = bed.obox();
+    let hits = (0..40)
+        .filter(|k| {
+            let local = glam::DVec3::new((*k as f64 / 40.0 - 0.5) * b.size.x * 0.8, -b.size.y * 0.35, 0.0);
+            let p = b.to_world(local);
+            let (x, y) = (40.0 + (p.x - min.x) * scale, 60.0 + (max.y - p.y) * scale);
+            image.get_pixel(x as u32, y as u32).0 == group_color(bed.category.group())
+        })
+        .count();
+    assert!(hits >= 10, "{hits} of 40 samples in the bed's colour");
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("room.json");
+    s.save(&scene).unwrap();
+    let png = dir.path().join("plan.png");
+    let o = shade_sim(&["-q", "export", scene.to_str().unwrap(), "--format", "png", "--out", png.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0));
+    assert_eq!(image::open(&png).unwrap().to_rgb8(), image);
+}
