@@ -233,6 +233,15 @@ fn support_box(human: &Human, span: &ActionSpan, parts: &[(usize, f64)], yaw: f6
     support_obox(lo, hi, bottom, yaw)
 }
 
+/// Where the palm of the `side` (`"left"` / `"right"`) hand is in frame `f`: past the wrist along
+/// the forearm by 0.37 forearm lengths (0.054 H / 0.146 H); `None` without elbow and wrist joints.
+pub fn palm_of(human: &Human, f: usize, side: &str) -> Option<DVec3> {
+    let s = &human.skeleton;
+    let e = human.joint_at(f, s.joint(&format!("{side}_elbow"))?);
+    let w = human.joint_at(f, s.joint(&format!("{side}_wrist"))?);
+    Some(w + (w - e) * HAND_PER_FOREARM)
+}
+
 /// Centre of the touch box of the hand that reaches furthest forward during the span: half a box
 /// past the palm along the forearm, averaged over the span.
 fn touching_palm(human: &Human, span: &ActionSpan) -> Option<DVec3> {
@@ -241,11 +250,7 @@ fn touching_palm(human: &Human, span: &ActionSpan) -> Option<DVec3> {
     let mid = (span.start + span.end) / 2;
     let yaw = body_yaw(human, mid);
     let facing = DVec2::new(-yaw.sin(), yaw.cos());
-    let palm = |side: &str, f: usize| -> Option<DVec3> {
-        let e = human.joint_at(f, s.joint(&format!("{side}_elbow"))?);
-        let w = human.joint_at(f, s.joint(&format!("{side}_wrist"))?);
-        Some(w + (w - e) * HAND_PER_FOREARM)
-    };
+    let palm = |side: &str, f: usize| palm_of(human, f, side);
     // The volume the hand presses on: half a cube past the palm, along the forearm.
     let pressed = |side: &str, f: usize| -> Option<DVec3> {
         let e = human.joint_at(f, s.joint(&format!("{side}_elbow"))?);

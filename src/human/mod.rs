@@ -13,7 +13,7 @@ mod surface;
 
 pub use conditions::{
     Conditions, ContactBox, FloorPoint, SUPPORT_DEPTH, TOUCH_SIDE, body_yaw, contact_boxes, floor_points,
-    free_space_mask,
+    free_space_mask, palm_of,
 };
 pub use gait::Gait;
 pub use motion::Motion;

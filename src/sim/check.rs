@@ -7,6 +7,7 @@
 use super::solids::{Owner, Solid, furniture_solids, wall_solids};
 use super::stability::unstable_objects;
 use super::{Violation, ViolationKind};
+use crate::human::palm_of;
 use crate::scene::{Action, Human, Scene};
 use glam::DVec3;
 use rapier3d::parry::math::Pose;
@@ -270,14 +271,8 @@ fn support(human: &Human, furniture: &[Solid], limit: f64) -> Vec<Violation> {
 
 /// Distance from the palm of the hand that reaches furthest to the nearest furniture part.
 fn palm_distance(human: &Human, f: usize, furniture: &[Solid]) -> f64 {
-    let sk = &human.skeleton;
-    let palm = |side: &str| -> Option<DVec3> {
-        let e = human.joint_at(f, sk.joint(&format!("{side}_elbow"))?);
-        let w = human.joint_at(f, sk.joint(&format!("{side}_wrist"))?);
-        Some(w + (w - e) * 0.37)
-    };
     let dist = |p: DVec3| furniture.iter().map(|s| s.obox.signed_distance(p)).fold(f64::INFINITY, f64::min);
-    ["left", "right"].iter().filter_map(|s| palm(s)).map(dist).fold(f64::INFINITY, f64::min)
+    ["left", "right"].iter().filter_map(|side| palm_of(human, f, side)).map(dist).fold(f64::INFINITY, f64::min)
 }
 
 /// Furniture parts inside other furniture or walls.
