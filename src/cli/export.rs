@@ -1,4 +1,4 @@
-//! `shade-sim export SCENE --format mjcf|png --out FILE [--free-furniture] [--validate]`.
+//! `shade-sim export SCENE --format mjcf|robosuite|png --out FILE [--free-furniture] [--validate]`.
 
 use super::output::{print_json, print_text};
 use super::{ExitStatus, GlobalArgs};
@@ -13,6 +13,9 @@ use std::path::PathBuf;
 pub enum Format {
     /// A MuJoCo world (MJCF XML) with the humans' motion as keyframes.
     Mjcf,
+    /// A robosuite arena (MJCF without keyframes, for `robosuite.models.arenas.Arena`) plus the
+    /// humans' motion in `<out>.motion.json`.
+    Robosuite,
     /// A top-down plan (PNG): floor, labelled furniture, walking paths, contact humans, scale.
     Png,
 }
@@ -48,9 +51,17 @@ struct Report {
 pub fn run(args: &ExportArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     let scene = Scene::load(&args.scene)?;
     let (bytes, validation) = match args.format {
-        Format::Mjcf => {
-            let text = scene_mjcf(&scene, MjcfOptions { free_furniture: args.free_furniture });
+        Format::Mjcf | Format::Robosuite => {
+            let robosuite = args.format == Format::Robosuite;
+            let text = scene_mjcf(&scene, MjcfOptions { free_furniture: args.free_furniture, keyframes: !robosuite });
             let validation = if args.validate { Some(validate(&scene, &text, &args.out)?) } else { None };
+            if robosuite {
+                let motion = motion_path(&args.out);
+                let mut json = serde_json::to_string(&shade_sim::export::mocap_motion(&scene))?;
+                json.push('\n');
+                write_atomic(&motion, json.as_bytes())
+                    .with_context(|| format!("{}: cannot write", motion.display()))?;
+            }
             (text.into_bytes(), validation)
         }
         Format::Png => {
@@ -72,6 +83,11 @@ pub fn run(args: &ExportArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus>
         print_text(&format!("{}: wrote {} ({} bytes){checked}\n", report.scene, report.out, report.bytes))?;
     }
     Ok(ExitStatus::Success)
+}
+
+/// `room.xml` → `room.motion.json`.
+fn motion_path(out: &std::path::Path) -> PathBuf {
+    out.with_extension("motion.json")
 }
 
 #[cfg(feature = "mujoco")]

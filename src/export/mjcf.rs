@@ -14,10 +14,58 @@ use glam::{DQuat, DVec3};
 use std::fmt::Write;
 
 /// Options of the export.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MjcfOptions {
-    /// Give furniture free joints (dynamic) instead of fixing it to the world.
+    /// Give furniture free joints (dynamic) instead of fixing it to the world. Default false.
     pub free_furniture: bool,
+    /// Write the humans' motion as `<keyframe>`s. Default true; robosuite arenas leave them out
+    /// (a merged robot changes the model's sizes) and use the companion motion file instead.
+    pub keyframes: bool,
+}
+
+impl Default for MjcfOptions {
+    fn default() -> MjcfOptions {
+        MjcfOptions { free_furniture: false, keyframes: true }
+    }
+}
+
+/// The humans' motion for a replay loop: mocap body names and, per frame, `[x, y, z, qw, qx, qy,
+/// qz]` of each, in the order of `bodies`.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct MocapMotion {
+    /// Frames per second.
+    pub fps: f64,
+    /// Mocap body names.
+    pub bodies: Vec<String>,
+    /// One row per frame, one pose per body.
+    pub frames: Vec<Vec<[f64; 7]>>,
+}
+
+/// The companion motion of `scene_mjcf`'s mocap bodies.
+pub fn mocap_motion(scene: &Scene) -> MocapMotion {
+    let mut bodies = Vec::new();
+    for (h, human) in scene.humans.iter().enumerate() {
+        for b in 0..human.skeleton.bones.len() {
+            bodies.push(bone_name(scene, h, b));
+        }
+    }
+    let frames = scene.humans.iter().map(|h| h.frames.len()).max().unwrap_or(0);
+    let round = |x: f64| (x * 1e5).round() / 1e5;
+    let frames = (0..frames)
+        .map(|f| {
+            scene
+                .humans
+                .iter()
+                .enumerate()
+                .flat_map(|(h, human)| (0..human.skeleton.bones.len()).map(move |b| (h, b)))
+                .map(|(h, b)| {
+                    let (p, q) = bone_pose(scene, h, b, f);
+                    [p.x, p.y, p.z, q.w, q.x, q.y, q.z].map(round)
+                })
+                .collect()
+        })
+        .collect();
+    MocapMotion { fps: scene.humans.first().map_or(30.0, |h| h.fps), bodies, frames }
 }
 
 fn v3(v: DVec3) -> String {
@@ -190,7 +238,7 @@ pub fn scene_mjcf(scene: &Scene, opts: MjcfOptions) -> String {
         x.push_str("  </contact>\n");
     }
     let frames = scene.humans.iter().map(|h| h.frames.len()).max().unwrap_or(0);
-    if !bones.is_empty() {
+    if !bones.is_empty() && opts.keyframes {
         x.push_str("  <keyframe>\n");
         for f in 0..frames {
             let mut mpos = Vec::new();

@@ -14,7 +14,7 @@ pub use canvas::{Canvas, Color, View, png_bytes};
 pub use font::{draw_text, text_width};
 pub use humans_png::{action_color, render_humans, render_humans_sized};
 pub use mask_png::{mask_png, save_mask_png};
-pub use mjcf::{MjcfOptions, scene_mjcf};
+pub use mjcf::{MjcfOptions, MocapMotion, mocap_motion, scene_mjcf};
 pub use plan_png::{group_color, render_plan};
 #[cfg(feature = "mujoco")]
 pub use validate_mujoco::{MAX_MOVE, MujocoValidation, validate_in_mujoco};

@@ -19,7 +19,7 @@ fn mjcf_is_deterministic_and_named_after_the_scene() {
     let frames = s.humans.iter().map(|h| h.frames.len()).max().unwrap();
     assert_eq!(a.matches("<key name=").count(), frames);
     assert!(a.contains("<pair geom1=\"h0_pelvis-spine\""), "static furniture needs explicit pairs");
-    let free = scene_mjcf(&s, MjcfOptions { free_furniture: true });
+    let free = scene_mjcf(&s, MjcfOptions { free_furniture: true, ..MjcfOptions::default() });
     // Free pieces get joints and need no pairs; lamps stay fixed to the ceiling and keep theirs.
     for o in &s.objects {
         let joint = format!("<freejoint name=\"{}_free\"/>", o.id);
@@ -36,7 +36,12 @@ fn exported_worlds_load_step_and_stay_put_in_mujoco() {
     for room in RoomType::ALL {
         let s = generate_room(room, 3, 1, false).scene;
         for free in [false, true] {
-            let v = validate_in_mujoco(&s, &scene_mjcf(&s, MjcfOptions { free_furniture: free }), 1000).unwrap();
+            let v = validate_in_mujoco(
+                &s,
+                &scene_mjcf(&s, MjcfOptions { free_furniture: free, ..MjcfOptions::default() }),
+                1000,
+            )
+            .unwrap();
             assert!(v.ok(), "{room} free={free}: {v:?}");
             assert!((v.seconds - 2.0).abs() < 1e-9);
         }
@@ -49,7 +54,9 @@ fn exported_worlds_load_step_and_stay_put_in_mujoco() {
     floating.center = [s.objects[0].center[0], s.objects[0].center[1], 2.0];
     floating.size = [0.3, 0.3, 0.3];
     s.objects.push(floating);
-    let v = validate_in_mujoco(&s, &scene_mjcf(&s, MjcfOptions { free_furniture: true }), 1000).unwrap();
+    let v =
+        validate_in_mujoco(&s, &scene_mjcf(&s, MjcfOptions { free_furniture: true, ..MjcfOptions::default() }), 1000)
+            .unwrap();
     assert!(v.moved.iter().any(|(id, d)| id == "floating" && *d > 0.5), "{v:?}");
 }
 
@@ -126,4 +133,57 @@ fn plan_png_shows_furniture_in_its_colour() {
     let o = shade_sim(&["-q", "export", scene.to_str().unwrap(), "--format", "png", "--out", png.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(0));
     assert_eq!(image::open(&png).unwrap().to_rgb8(), image);
+}
+
+/// The robosuite arena loads with `robosuite.models.arenas.Arena`, merges into a
+/// `MujocoWorldBase` with a Panda robot, steps, and the companion motion replays on the mocap
+/// bodies (robosuite from scripts/setup_robosuite.sh).
+#[cfg(feature = "mujoco")]
+#[test]
+fn robosuite_loads_the_arena_with_a_robot_and_replays_the_motion() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("room.json");
+    generate_room(RoomType::Living, 4, 2, false).scene.save(&scene).unwrap();
+    let xml = dir.path().join("room.xml");
+    let o =
+        shade_sim(&["-q", "export", scene.to_str().unwrap(), "--format", "robosuite", "--out", xml.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", crate::stderr(&o));
+    let motion: shade_sim::export::MocapMotion =
+        serde_json::from_slice(&std::fs::read(dir.path().join("room.motion.json")).unwrap()).unwrap();
+    assert!(!motion.frames.is_empty() && motion.frames[0].len() == motion.bodies.len());
+    assert!(!std::fs::read_to_string(&xml).unwrap().contains("<keyframe>"));
+    let python = crate::root().join(".venv-robosuite/bin/python");
+    let script = r#"
+import json, sys, numpy as np, mujoco
+from robosuite.models.arenas import Arena
+from robosuite.models.world import MujocoWorldBase
+from robosuite.models.robots import Panda
+world = MujocoWorldBase()
+world.merge(Arena(sys.argv[1]))
+robot = Panda()
+robot.set_base_xpos([0.5, 0.5, 0.0])
+world.merge(robot)
+model = world.get_model(mode="mujoco")
+d = mujoco.MjData(model)
+motion = json.load(open(sys.argv[2]))
+ids = [model.body(name).mocapid[0] for name in motion["bodies"]]
+for frame in motion["frames"]:
+    for i, p in zip(ids, frame):
+        d.mocap_pos[i] = p[:3]
+        d.mocap_quat[i] = p[3:]
+    mujoco.mj_step(model, d)
+assert np.isfinite(d.qpos).all() and np.isfinite(d.xpos).all()
+assert np.allclose(d.mocap_pos[ids[0]], motion["frames"][-1][0][:3])
+print("ok", model.nbody, model.nmocap)
+"#;
+    let out = std::process::Command::new(python)
+        .env("PYTHONWARNINGS", "ignore")
+        .arg("-c")
+        .arg(script)
+        .arg(&xml)
+        .arg(dir.path().join("room.motion.json"))
+        .output()
+        .expect("the robosuite venv's python runs");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(String::from_utf8_lossy(&out.stdout).starts_with("ok"));
 }
