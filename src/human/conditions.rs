@@ -124,11 +124,6 @@ fn radius_between(skeleton: &Skeleton, joints: &[usize]) -> Option<f64> {
     skeleton.bones.iter().filter(|b| joints.contains(&b.a) && joints.contains(&b.b)).map(|b| b.radius).reduce(f64::max)
 }
 
-/// Largest radius of a bone touching joint `j`.
-fn radius_at(skeleton: &Skeleton, j: usize) -> f64 {
-    skeleton.bones.iter().filter(|b| b.a == j || b.b == j).map(|b| b.radius).fold(0.0, f64::max)
-}
-
 /// The contact boxes of one human, one per contact span.
 pub fn contact_boxes(human: &Human) -> Vec<ContactBox> {
     human.contact_spans().filter_map(|span| contact_box(human, span)).collect()
@@ -175,7 +170,7 @@ fn contact_box(human: &Human, span: &ActionSpan) -> Option<ContactBox> {
             support_box_of(span, &points, r, yaw)
         }
         Action::Lie => {
-            let parts: Vec<(usize, f64)> = (0..s.joints.len()).map(|j| (j, radius_at(s, j))).collect();
+            let parts: Vec<(usize, f64)> = (0..s.joints.len()).map(|j| (j, s.joint_radius(j))).collect();
             support_box(human, span, &parts, yaw)
         }
         Action::Touch => {

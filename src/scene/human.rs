@@ -61,6 +61,11 @@ impl Skeleton {
     pub fn joint(&self, name: &str) -> Option<usize> {
         self.joints.iter().position(|j| j == name)
     }
+
+    /// Largest radius of the bones touching joint `j` (0 when none does).
+    pub fn joint_radius(&self, j: usize) -> f64 {
+        self.bones.iter().filter(|b| b.a == j || b.b == j).map(|b| b.radius).fold(0.0, f64::max)
+    }
 }
 
 impl Human {

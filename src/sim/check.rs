@@ -200,11 +200,10 @@ fn penetrations(scene: &Scene, human: &Human, solids: &[Solid], tolerance: f64) 
 /// Lowest surface point under a set of joints (joint z minus the largest radius of its bones).
 fn lowest_under(human: &Human, f: usize, joints: &[usize]) -> (DVec3, f64) {
     let sk = &human.skeleton;
-    let radius = |j: usize| sk.bones.iter().filter(|b| b.a == j || b.b == j).map(|b| b.radius).fold(0.0, f64::max);
     let mut best = (DVec3::ZERO, f64::INFINITY);
     for &j in joints {
         let p = human.joint_at(f, j);
-        let z = p.z - radius(j);
+        let z = p.z - sk.joint_radius(j);
         if z < best.1 {
             best = (p, z);
         }

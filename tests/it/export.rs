@@ -6,6 +6,35 @@ use shade_sim::data::generate_room;
 use shade_sim::export::{MjcfOptions, scene_mjcf};
 use shade_sim::scene::RoomType;
 
+/// A generated room saved and exported with `format` into a temporary folder: (folder, output).
+#[cfg(feature = "mujoco")]
+fn exported(room: RoomType, index: u64, format: &str, extra: &[&str]) -> (tempfile::TempDir, std::path::PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("room.json");
+    generate_room(room, 4, index, false).scene.save(&scene).unwrap();
+    let out = dir.path().join("room.xml");
+    let mut args = vec!["-q", "export", scene.to_str().unwrap(), "--format", format, "--out", out.to_str().unwrap()];
+    args.extend_from_slice(extra);
+    let o = shade_sim(&args);
+    assert_eq!(o.status.code(), Some(0), "{}", crate::stderr(&o));
+    (dir, out)
+}
+
+/// Runs `script` with the python of the venv `venv` (made by the setup scripts) and `args`;
+/// fails the test with Python's stderr when it fails.
+#[cfg(feature = "mujoco")]
+fn python(venv: &str, script: &str, args: &[&std::path::Path]) -> String {
+    let out = std::process::Command::new(crate::root().join(venv).join("bin/python"))
+        .env("PYTHONWARNINGS", "ignore")
+        .arg("-c")
+        .arg(script)
+        .args(args)
+        .output()
+        .expect("the venv's python runs");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
 #[test]
 fn mjcf_is_deterministic_and_named_after_the_scene() {
     let s = generate_room(RoomType::Living, 3, 7, false).scene;
@@ -63,22 +92,8 @@ fn exported_worlds_load_step_and_stay_put_in_mujoco() {
 #[cfg(feature = "mujoco")]
 #[test]
 fn export_command_validates_and_python_mujoco_loads_the_file() {
-    let dir = tempfile::tempdir().unwrap();
-    let scene = dir.path().join("room.json");
-    generate_room(RoomType::Dining, 4, 0, false).scene.save(&scene).unwrap();
-    let xml = dir.path().join("room.xml");
-    let o = shade_sim(&[
-        "export",
-        scene.to_str().unwrap(),
-        "--format",
-        "mjcf",
-        "--out",
-        xml.to_str().unwrap(),
-        "--validate",
-    ]);
-    assert_eq!(o.status.code(), Some(0), "{}", crate::stderr(&o));
+    let (_dir, xml) = exported(RoomType::Dining, 0, "mjcf", &["--validate"]);
     // The Python package installed by scripts/setup_mujoco.sh: load, replay the keyframes, step.
-    let python = crate::root().join(".venv-mujoco/bin/python");
     let script = r#"
 import sys, mujoco, numpy as np
 m = mujoco.MjModel.from_xml_path(sys.argv[1])
@@ -92,8 +107,7 @@ for _ in range(500):
 assert np.isfinite(d.qpos).all() and np.isfinite(d.xpos).all()
 print(m.nbody, m.ngeom, m.nkey)
 "#;
-    let out = std::process::Command::new(python).arg("-c").arg(script).arg(&xml).output().expect("python runs");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    python(".venv-mujoco", script, &[&xml]);
 }
 
 #[test]
@@ -141,18 +155,11 @@ fn plan_png_shows_furniture_in_its_colour() {
 #[cfg(feature = "mujoco")]
 #[test]
 fn robosuite_loads_the_arena_with_a_robot_and_replays_the_motion() {
-    let dir = tempfile::tempdir().unwrap();
-    let scene = dir.path().join("room.json");
-    generate_room(RoomType::Living, 4, 2, false).scene.save(&scene).unwrap();
-    let xml = dir.path().join("room.xml");
-    let o =
-        shade_sim(&["-q", "export", scene.to_str().unwrap(), "--format", "robosuite", "--out", xml.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(0), "{}", crate::stderr(&o));
+    let (dir, xml) = exported(RoomType::Living, 2, "robosuite", &[]);
     let motion: shade_sim::export::MocapMotion =
         serde_json::from_slice(&std::fs::read(dir.path().join("room.motion.json")).unwrap()).unwrap();
     assert!(!motion.frames.is_empty() && motion.frames[0].len() == motion.bodies.len());
     assert!(!std::fs::read_to_string(&xml).unwrap().contains("<keyframe>"));
-    let python = crate::root().join(".venv-robosuite/bin/python");
     let script = r#"
 import json, sys, numpy as np, mujoco
 from robosuite.models.arenas import Arena
@@ -176,14 +183,6 @@ assert np.isfinite(d.qpos).all() and np.isfinite(d.xpos).all()
 assert np.allclose(d.mocap_pos[ids[0]], motion["frames"][-1][0][:3])
 print("ok", model.nbody, model.nmocap)
 "#;
-    let out = std::process::Command::new(python)
-        .env("PYTHONWARNINGS", "ignore")
-        .arg("-c")
-        .arg(script)
-        .arg(&xml)
-        .arg(dir.path().join("room.motion.json"))
-        .output()
-        .expect("the robosuite venv's python runs");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    assert!(String::from_utf8_lossy(&out.stdout).starts_with("ok"));
+    let motion_file = dir.path().join("room.motion.json");
+    assert!(python(".venv-robosuite", script, &[&xml, &motion_file]).starts_with("ok"));
 }
