@@ -6,11 +6,15 @@
 //! The command-line tool `shade-sim` is a thin layer over this library.
 #![warn(missing_docs)]
 
+mod alloc_tuning;
 pub mod data;
 pub mod eval;
 pub mod export;
 pub mod furniture;
+#[path = "gen/mod.rs"]
+pub mod generator;
 pub mod geom;
 pub mod human;
 pub mod scene;
 pub mod sim;
+pub use alloc_tuning::tune_allocator_for_tensors;

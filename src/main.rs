@@ -5,6 +5,7 @@ use clap::Parser;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
+    shade_sim::tune_allocator_for_tensors();
     let cli = cli::Cli::parse();
     cli::init_logging(&cli.global);
     match cli::run(cli) {

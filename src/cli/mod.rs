@@ -6,13 +6,17 @@
 mod calibrate;
 mod check;
 mod conditions;
+mod demo;
 mod eval;
 mod export;
+mod generate;
 mod import;
 mod inspect;
 mod output;
 mod progress;
+mod scene_rows;
 mod synth;
+mod train;
 
 use clap::{Args, Parser, Subcommand};
 use std::process::ExitCode;
@@ -90,6 +94,13 @@ pub enum Command {
     /// Export a scene: a MuJoCo world (MJCF) with the humans as mocap bodies and their motion
     /// as keyframes.
     Export(export::ExportArgs),
+    /// The main job on the shipped models: generate layouts for every example input, check them
+    /// physically, export MJCF and PNG plans into out/demo, print a table.
+    Demo(demo::DemoArgs),
+    /// Generate furniture layouts for an input's floor plan and humans with a SHADE model.
+    Generate(generate::GenerateArgs),
+    /// Train the SHADE denoiser on a calibrated dataset (resumable; checkpoints on Ctrl-C).
+    Train(train::TrainArgs),
     /// Convert the licensed MIME release of 3D-FRONT HUMAN (folders of boxes.npz) to shade-scene/1.
     #[command(name = "import-3dfront-human")]
     Import3dfrontHuman(import::ImportArgs),
@@ -126,6 +137,9 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
         Command::Check(args) => check::run(args, &cli.global),
         Command::Eval(args) => eval::run(args, &cli.global),
         Command::Export(args) => export::run(args, &cli.global),
+        Command::Demo(args) => demo::run(args, &cli.global),
+        Command::Generate(args) => generate::run(args, &cli.global),
+        Command::Train(args) => train::run(args, &cli.global),
         Command::Import3dfrontHuman(args) => import::run(args, &cli.global),
     };
     match result {

@@ -1,0 +1,89 @@
+//! `shade-sim generate --input IN.json --out DIR [--samples K] [--seed S] [--model DIR]`:
+//! layouts for an input's floor plan and humans, written as `DIR/<input>_<k>.json`.
+
+use super::output::{print_json, print_text};
+use super::scene_rows::{SceneRow, table};
+use super::{ExitStatus, GlobalArgs};
+use anyhow::Context;
+use clap::Args;
+use shade_sim::generator::{Checkpoint, Generator, shipped_model};
+use shade_sim::scene::{RoomType, Scene};
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, Args)]
+pub struct GenerateArgs {
+    /// Input scene (floor plan and humans; objects, if any, are ignored), or a folder of them.
+    #[arg(long)]
+    pub input: PathBuf,
+    /// Folder for the generated scenes.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Layouts to sample.
+    #[arg(long, default_value_t = 1)]
+    pub samples: usize,
+    /// Seed: the same seed gives the same layouts.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Model folder (config.json + model.safetensors); default: the shipped model of the input's room type.
+    #[arg(long)]
+    pub model: Option<PathBuf>,
+}
+
+/// The model in `dir`, or the shipped one for `room`; fails when its room type differs.
+pub fn load_model(dir: Option<&Path>, room: RoomType, input: &Path) -> anyhow::Result<Generator> {
+    let checkpoint = match dir {
+        Some(d) => Checkpoint::load(d)?,
+        None => shipped_model(room)?,
+    };
+    let model_room = checkpoint.meta.model.room_type;
+    anyhow::ensure!(model_room == room, "{}: is a {room} but the model generates {model_room}", input.display());
+    Ok(Generator::new(checkpoint))
+}
+
+pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
+    anyhow::ensure!(args.samples > 0, "--samples: must be at least 1");
+    let files = if args.input.is_dir() { scene_files(&args.input)? } else { vec![args.input.clone()] };
+    anyhow::ensure!(!files.is_empty(), "{}: no scene files", args.input.display());
+    let inputs: Vec<Scene> = files.iter().map(Scene::load).collect::<Result<_, _>>()?;
+    let room = inputs[0].room_type;
+    if let Some((f, s)) = files.iter().zip(&inputs).find(|(_, s)| s.room_type != room) {
+        anyhow::bail!(
+            "{}: is a {} but {} is a {room}; generate one room type at a time",
+            f.display(),
+            s.room_type,
+            files[0].display()
+        );
+    }
+    let generator = load_model(args.model.as_deref(), room, &files[0])?;
+    let bar = super::progress::bar(global, (inputs.len() * args.samples) as u64, "generate");
+    let scenes = generator
+        .generate_with(&inputs, args.samples, args.seed, &mut |_| None, &mut |done| bar.set_position(done as u64))?;
+    bar.finish_and_clear();
+    std::fs::create_dir_all(&args.out).with_context(|| format!("{}: cannot create folder", args.out.display()))?;
+    let mut rows = Vec::new();
+    for (input, samples) in files.iter().zip(&scenes) {
+        let stem = input.file_stem().map_or("scene".into(), |s| s.to_string_lossy().into_owned());
+        for (k, scene) in samples.iter().enumerate() {
+            let file = args.out.join(format!("{stem}_{k}.json"));
+            scene.save(&file)?;
+            rows.push(SceneRow::of(&file.display().to_string(), scene, None));
+        }
+    }
+    if global.json {
+        print_json(&serde_json::json!({ "input": args.input, "seed": args.seed, "scenes": rows }))?;
+    } else if global.quiet == 0 {
+        print_text(&table(&rows))?;
+    }
+    Ok(ExitStatus::Success)
+}
+
+/// The scene files (`*.json`) of a folder, sorted by name.
+pub fn scene_files(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .with_context(|| format!("{}: cannot read folder", dir.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+        .collect();
+    files.sort();
+    Ok(files)
+}

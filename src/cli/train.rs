@@ -1,0 +1,143 @@
+//! `shade-sim train --data DIR --out models/ROOM [--steps N] [--resume]`: trains the denoiser on a
+//! calibrated dataset with a progress bar, a JSON-lines log, a loss plot and checkpoints every few
+//! minutes and on Ctrl-C.
+
+use super::output::{print_json, print_text};
+use super::{ExitStatus, GlobalArgs};
+use clap::Args;
+use indicatif::ProgressBar;
+use shade_sim::data::read_stats;
+use shade_sim::generator::train::LogLine;
+use shade_sim::generator::{ModelConfig, TrainObserver, TrainOptions, train};
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
+
+#[derive(Debug, Args)]
+pub struct TrainArgs {
+    /// Calibrated dataset (stats.json, train/, val/).
+    #[arg(long)]
+    pub data: PathBuf,
+    /// Model folder to write (config.json, model.safetensors, log.jsonl, loss.png, train state).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Total optimiser steps.
+    #[arg(long, default_value_t = 12_000)]
+    pub steps: u64,
+    /// Scenes per batch.
+    #[arg(long, default_value_t = 32)]
+    pub batch: usize,
+    /// Peak learning rate (warm-up, then cosine to a tenth).
+    #[arg(long, default_value_t = 3e-4)]
+    pub lr: f64,
+    /// Model size: small (shipped) or tiny (tests).
+    #[arg(long, default_value = "small")]
+    pub preset: String,
+    /// Seed of initialisation, batches and noise.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Continue the run whose checkpoint is in --out.
+    #[arg(long)]
+    pub resume: bool,
+    /// Minutes between checkpoints.
+    #[arg(long, default_value_t = 5.0)]
+    pub checkpoint_minutes: f64,
+    /// Steps between log lines.
+    #[arg(long, default_value_t = 50)]
+    pub log_every: u64,
+    /// Steps between validation losses.
+    #[arg(long, default_value_t = 1000)]
+    pub val_every: u64,
+}
+
+struct Bar(ProgressBar);
+
+impl TrainObserver for Bar {
+    fn started(&mut self, step: u64, total: u64, scenes: usize, parameters: usize) {
+        self.0.set_length(total);
+        self.0.set_position(step);
+        self.0.reset_eta();
+        tracing::info!("training on {scenes} scenes, {parameters} parameters, from step {step} to {total}");
+    }
+    fn logged(&mut self, line: &LogLine) {
+        self.0.set_position(line.step);
+        let val = line.val_loss.map_or(String::new(), |v| format!(" val {v:.4}"));
+        self.0.set_message(format!("train loss {:.4}{val}", line.loss));
+        tracing::info!(step = line.step, loss = line.loss, val = ?line.val_loss, "log");
+    }
+    fn checkpointed(&mut self, step: u64) {
+        tracing::info!("checkpoint at step {step}");
+    }
+}
+
+pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
+    let stats = read_stats(&args.data)?;
+    let model = ModelConfig::preset(&args.preset, stats.room_type)
+        .ok_or_else(|| anyhow::anyhow!("--preset: unknown preset {:?} (small, tiny)", args.preset))?;
+    let state = args.out.join(shade_sim::generator::checkpoint::STATE_META_FILE);
+    anyhow::ensure!(
+        args.resume || !state.exists(),
+        "{}: holds a training run; pass --resume to continue it or choose another --out",
+        args.out.display()
+    );
+    anyhow::ensure!(
+        args.batch > 0 && args.log_every > 0 && args.val_every > 0,
+        "--batch, --log-every and --val-every must be positive"
+    );
+    let mut opts = TrainOptions::new(args.data.clone(), args.out.clone(), model);
+    opts.steps = args.steps;
+    opts.batch = args.batch;
+    opts.lr = args.lr;
+    opts.seed = args.seed;
+    opts.resume = args.resume;
+    opts.log_every = args.log_every;
+    opts.val_every = args.val_every;
+    opts.checkpoint_every = Duration::from_secs_f64(args.checkpoint_minutes.max(0.0) * 60.0);
+    opts.command = std::env::args().map(|a| shell_word(&a)).collect::<Vec<_>>().join(" ").replacen(
+        &shell_word(&std::env::args().next().unwrap_or_default()),
+        "shade-sim",
+        1,
+    );
+    let stop = Arc::new(AtomicBool::new(false));
+    let flag = stop.clone();
+    // A second Ctrl-C while the checkpoint is written falls through to the default (exit).
+    let _ = ctrlc::set_handler(move || {
+        if flag.swap(true, Ordering::Relaxed) {
+            std::process::exit(130);
+        }
+        eprintln!("stopping: writing a checkpoint at the next log step (Ctrl-C again to quit now)");
+    });
+    let bar = super::progress::bar(global, args.steps, "train");
+    let outcome = train(&opts, &stop, &mut Bar(bar.clone()))?;
+    bar.finish_and_clear();
+    if global.json {
+        print_json(&serde_json::json!({
+            "out": args.out,
+            "step": outcome.step,
+            "stopped": outcome.stopped,
+            "val_loss": outcome.val_loss,
+            "seconds": outcome.seconds,
+        }))?;
+    } else if global.quiet == 0 {
+        let val = outcome.val_loss.map_or("-".to_string(), |v| format!("{v:.4}"));
+        let how = if outcome.stopped { "stopped (resume with --resume)" } else { "done" };
+        print_text(&format!(
+            "{how}: step {} of {}, val loss {val}, {:.0} s of training; model in {}\n",
+            outcome.step,
+            args.steps,
+            outcome.seconds,
+            args.out.display()
+        ))?;
+    }
+    Ok(ExitStatus::Success)
+}
+
+/// `a` quoted for a shell when it needs it.
+fn shell_word(a: &str) -> String {
+    if !a.is_empty() && a.chars().all(|c| c.is_ascii_alphanumeric() || "-_./=:".contains(c)) {
+        a.to_string()
+    } else {
+        format!("'{}'", a.replace('\'', "'\\''"))
+    }
+}

@@ -1,0 +1,160 @@
+//! A model folder: `config.json` (model config, bounds, categories, how it was trained) and
+//! `model.safetensors` (the EMA weights), plus, while training, `train_state.safetensors` and
+//! `train_state.json` (raw weights, optimiser moments, step) that `--resume` continues from.
+//!
+//! Every file is written to a temporary name and renamed, so a stop never leaves half a checkpoint.
+
+use super::{Bounds, Denoiser, GenError, ModelConfig, Params};
+use crate::scene::Category;
+use crate::scene::write_atomic;
+use candle_core::{Device, Tensor};
+use serde::{Deserialize, Serialize};
+use std::collections::{BTreeMap, HashMap};
+use std::path::{Path, PathBuf};
+
+/// Format tag of `config.json`.
+pub const MODEL_FORMAT: &str = "shade-model/1";
+
+/// How a checkpoint was trained.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TrainingInfo {
+    /// The command line that trained it.
+    pub command: String,
+    /// The dataset's `command` from its stats.json.
+    pub dataset_command: String,
+    /// The dataset's seed.
+    pub dataset_seed: u64,
+    /// FNV-1a hash of the dataset's stats.json (hex).
+    pub data_hash: String,
+    /// Scenes in the training split.
+    pub train_scenes: usize,
+    /// Optimiser steps done.
+    pub steps: u64,
+    /// Steps the run was asked for.
+    pub target_steps: u64,
+    /// Scenes per batch.
+    pub batch: usize,
+    /// Peak learning rate.
+    pub lr: f64,
+    /// EMA decay of the shipped weights.
+    pub ema_decay: f64,
+    /// Seed of initialisation, batches and noise.
+    pub seed: u64,
+    /// Training wall time so far (s).
+    pub wall_seconds: f64,
+    /// Last validation loss of the EMA weights.
+    pub val_loss: Option<f64>,
+}
+
+/// `config.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CheckpointMeta {
+    /// Always [`MODEL_FORMAT`].
+    pub format: String,
+    /// The model's shape.
+    pub model: ModelConfig,
+    /// Token scaling bounds.
+    pub bounds: Bounds,
+    /// Class order of the one-hot (the room type's categories; "empty" follows).
+    pub categories: Vec<Category>,
+    /// How it was trained.
+    pub training: TrainingInfo,
+}
+
+/// A loaded model: metadata and the denoiser with its EMA weights.
+#[derive(Debug, Clone)]
+pub struct Checkpoint {
+    /// `config.json`.
+    pub meta: CheckpointMeta,
+    /// The denoiser.
+    pub denoiser: Denoiser,
+}
+
+/// File names inside a model folder.
+pub const CONFIG_FILE: &str = "config.json";
+/// The shipped weights.
+pub const WEIGHTS_FILE: &str = "model.safetensors";
+/// Raw weights and optimiser moments.
+pub const STATE_FILE: &str = "train_state.safetensors";
+/// Step and progress of an interrupted run.
+pub const STATE_META_FILE: &str = "train_state.json";
+
+impl Checkpoint {
+    /// Loads the model in `dir`.
+    pub fn load(dir: &Path) -> Result<Checkpoint, GenError> {
+        let config = dir.join(CONFIG_FILE);
+        let text = std::fs::read_to_string(&config).map_err(|e| GenError::io(&config, e))?;
+        let meta = parse_meta(&text, &config)?;
+        let weights = dir.join(WEIGHTS_FILE);
+        let bytes = std::fs::read(&weights).map_err(|e| GenError::io(&weights, e))?;
+        Self::from_parts(meta, &bytes, &weights)
+    }
+
+    /// A model from its `config.json` and weight bytes; `origin` names them in errors.
+    pub fn from_parts(meta: CheckpointMeta, weights: &[u8], origin: &Path) -> Result<Checkpoint, GenError> {
+        let tensors = read_tensors(weights, origin)?;
+        let denoiser = Denoiser::new(&meta.model, &mut Params::loaded(tensors)).map_err(|e| at(e, origin))?;
+        Ok(Checkpoint { meta, denoiser })
+    }
+}
+
+/// Parses and checks `config.json` text.
+pub fn parse_meta(text: &str, origin: &Path) -> Result<CheckpointMeta, GenError> {
+    let meta: CheckpointMeta =
+        serde_json::from_str(text).map_err(|e| GenError::checkpoint(origin, format!("not a model config: {e}")))?;
+    if meta.format != MODEL_FORMAT {
+        return Err(GenError::checkpoint(origin, format!("format is {:?}, expected {MODEL_FORMAT:?}", meta.format)));
+    }
+    if let Some(problem) = meta.model.problem() {
+        return Err(GenError::checkpoint(origin, format!("bad model config: {problem}")));
+    }
+    if meta.categories != meta.model.room_type.categories() {
+        return Err(GenError::checkpoint(origin, "categories differ from the room type's".to_string()));
+    }
+    if !meta.bounds.is_valid() {
+        return Err(GenError::checkpoint(origin, "bounds are not finite and ordered".to_string()));
+    }
+    Ok(meta)
+}
+
+/// Tensors of a safetensors file's bytes.
+pub fn read_tensors(bytes: &[u8], origin: &Path) -> Result<HashMap<String, Tensor>, GenError> {
+    candle_core::safetensors::load_buffer(bytes, &Device::Cpu)
+        .map_err(|e| GenError::checkpoint(origin, format!("not a readable safetensors file: {e}")))
+}
+
+/// Writes `tensors` as safetensors to `path`, atomically.
+pub fn write_tensors(tensors: &BTreeMap<String, Tensor>, path: &Path) -> Result<(), GenError> {
+    let bytes = safetensors::serialize(tensors.iter().map(|(k, v)| (k.as_str(), v)), None)
+        .map_err(|e| GenError::checkpoint(path, format!("cannot serialise: {e}")))?;
+    write_atomic(path, &bytes).map_err(|e| GenError::io(path, e))
+}
+
+/// Writes `value` as pretty JSON to `path`, atomically.
+pub fn write_json<T: Serialize>(value: &T, path: &Path) -> Result<(), GenError> {
+    let mut text = serde_json::to_string_pretty(value).expect("plain data serialises");
+    text.push('\n');
+    write_atomic(path, text.as_bytes()).map_err(|e| GenError::io(path, e))
+}
+
+/// Puts `path` on a checkpoint error that lacks one.
+pub fn at(e: GenError, path: &Path) -> GenError {
+    match e {
+        GenError::Checkpoint { path: p, message } if p.as_os_str().is_empty() => {
+            GenError::Checkpoint { path: PathBuf::from(path), message }
+        }
+        other => other,
+    }
+}
+
+/// FNV-1a 64-bit hash of `bytes`, in hex.
+pub fn fnv1a_hex(bytes: &[u8]) -> String {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for &b in bytes {
+        h ^= b as u64;
+        h = h.wrapping_mul(0x0100_0000_01b3);
+    }
+    format!("{h:016x}")
+}

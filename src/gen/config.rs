@@ -1,0 +1,119 @@
+//! Model configuration: widths, depths, condition sizes and the diffusion length, with presets.
+
+use crate::scene::RoomType;
+use serde::{Deserialize, Serialize};
+
+/// Features of one contact box: centre (3), size (3), cos yaw, sin yaw, action one-hot (sit, lie, touch).
+pub const CONTACT_FEATURES: usize = 11;
+/// Features of one floor-plan point: position (2), outward normal (2).
+pub const FLOOR_FEATURES: usize = 4;
+/// Features of one free-space point: position (2), whether the mask had any pixel (1).
+pub const FREE_FEATURES: usize = 3;
+/// Sinusoidal time features.
+pub const TIME_FEATURES: usize = 64;
+
+/// Everything that fixes the denoiser's shape and the diffusion process.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelConfig {
+    /// Room type the model generates.
+    pub room_type: RoomType,
+    /// Token width inside the transformer.
+    pub d_model: usize,
+    /// DiT blocks.
+    pub blocks: usize,
+    /// Attention heads (divides `d_model`).
+    pub heads: usize,
+    /// Hidden width of each block's MLP as a multiple of `d_model`.
+    pub mlp_ratio: usize,
+    /// Hidden width of the PointNets.
+    pub pointnet_width: usize,
+    /// Contact boxes read per scene (more are dropped, fewer are masked).
+    pub max_contacts: usize,
+    /// Whether contact boxes also join the attention as tokens (cross-attention); they always
+    /// modulate every block through the pooled condition.
+    pub contact_tokens: bool,
+    /// Floor-plan points per scene.
+    pub floor_points: usize,
+    /// Free-space points per scene.
+    pub free_points: usize,
+    /// Diffusion steps T.
+    pub diffusion_steps: usize,
+}
+
+impl ModelConfig {
+    /// The shipped size: d 128, 4 blocks (≈ 1.3 M parameters, ≈ 5 MB).
+    pub fn small(room_type: RoomType) -> ModelConfig {
+        ModelConfig {
+            room_type,
+            d_model: 128,
+            blocks: 4,
+            heads: 4,
+            mlp_ratio: 4,
+            pointnet_width: 64,
+            max_contacts: 8,
+            contact_tokens: true,
+            floor_points: 128,
+            free_points: 64,
+            diffusion_steps: 200,
+        }
+    }
+
+    /// A tiny model for tests.
+    pub fn tiny(room_type: RoomType) -> ModelConfig {
+        ModelConfig {
+            room_type,
+            d_model: 32,
+            blocks: 2,
+            heads: 2,
+            mlp_ratio: 2,
+            pointnet_width: 16,
+            max_contacts: 4,
+            contact_tokens: true,
+            floor_points: 32,
+            free_points: 16,
+            diffusion_steps: 200,
+        }
+    }
+
+    /// A preset by name (`small`, `tiny`).
+    pub fn preset(name: &str, room_type: RoomType) -> Option<ModelConfig> {
+        match name {
+            "small" => Some(Self::small(room_type)),
+            "tiny" => Some(Self::tiny(room_type)),
+            _ => None,
+        }
+    }
+
+    /// Object slots (tokens) per scene.
+    pub fn slots(&self) -> usize {
+        self.room_type.max_objects()
+    }
+
+    /// Classes including the final "empty" class.
+    pub fn classes(&self) -> usize {
+        self.room_type.categories().len() + 1
+    }
+
+    /// Width of one object token: centre (3), size (3), cos, sin, classes.
+    pub fn token_dim(&self) -> usize {
+        8 + self.classes()
+    }
+
+    /// Why the configuration cannot build a model, if it cannot.
+    pub fn problem(&self) -> Option<String> {
+        if self.d_model == 0 || self.heads == 0 || self.d_model % self.heads != 0 {
+            return Some(format!("d_model {} is not a positive multiple of heads {}", self.d_model, self.heads));
+        }
+        if self.blocks == 0 || self.mlp_ratio == 0 || self.pointnet_width == 0 {
+            return Some("blocks, mlp_ratio and pointnet_width must be positive".into());
+        }
+        if self.max_contacts == 0 || self.floor_points == 0 || self.free_points == 0 {
+            return Some("max_contacts, floor_points and free_points must be positive".into());
+        }
+        if self.diffusion_steps < 2 {
+            return Some("diffusion_steps must be at least 2".into());
+        }
+        None
+    }
+}

@@ -1,0 +1,101 @@
+//! Layout generation for input scenes (floor plan + humans): conditioning, batched sampling,
+//! decoding into shade-scene/1 scenes that keep the input's floor plan and humans.
+
+use super::dataset::HostBatch;
+use super::sampler::{Guidance, sample};
+use super::{Checkpoint, Features, GenError, Schedule, tokens};
+use crate::data::Rng;
+use crate::human::Conditions;
+use crate::scene::Scene;
+
+/// Makes the guidance of one batch from its input scenes (`None`: unguided).
+pub type GuidanceFactory = dyn FnMut(&[&Scene]) -> Option<Box<dyn Guidance>>;
+
+/// Scenes sampled together at most (bounded memory, full use of the matrix kernels).
+pub const MAX_BATCH: usize = 64;
+
+/// A loaded model ready to sample.
+#[derive(Debug, Clone)]
+pub struct Generator {
+    /// The model.
+    pub checkpoint: Checkpoint,
+    schedule: Schedule,
+}
+
+impl Generator {
+    /// A generator over `checkpoint`.
+    pub fn new(checkpoint: Checkpoint) -> Generator {
+        let schedule = Schedule::linear(checkpoint.meta.model.diffusion_steps);
+        Generator { checkpoint, schedule }
+    }
+
+    /// The seed of sample `k` of input `i` for the run seed `seed`.
+    pub fn item_seed(seed: u64, input: usize, sample: usize) -> u64 {
+        Rng::for_item(seed, ((input as u64) << 20) | sample as u64).next_u64()
+    }
+
+    /// `samples` layouts per input, in input order then sample order. Deterministic for `seed`.
+    /// Inputs must have the model's room type.
+    pub fn generate(&self, inputs: &[Scene], samples: usize, seed: u64) -> Result<Vec<Vec<Scene>>, GenError> {
+        self.generate_with(inputs, samples, seed, &mut |_| None, &mut |_| {})
+    }
+
+    /// Like [`Generator::generate`], with a guidance made per batch from its input scenes and a
+    /// callback after every batch with the number of samples done.
+    pub fn generate_with(
+        &self,
+        inputs: &[Scene],
+        samples: usize,
+        seed: u64,
+        guidance: &mut GuidanceFactory,
+        progress: &mut dyn FnMut(usize),
+    ) -> Result<Vec<Vec<Scene>>, GenError> {
+        let room = self.checkpoint.meta.model.room_type;
+        if let Some(bad) = inputs.iter().find(|s| s.room_type != room) {
+            return Err(GenError::Input {
+                path: Default::default(),
+                message: format!("input is a {} but the model generates {room}", bad.room_type),
+            });
+        }
+        let jobs: Vec<(usize, usize)> = (0..inputs.len()).flat_map(|i| (0..samples).map(move |k| (i, k))).collect();
+        let features: Vec<(Conditions, Features)> = inputs
+            .iter()
+            .map(|s| {
+                let cond = Conditions::of(s);
+                let f = Features::of(&cond, &self.checkpoint.meta.bounds, &self.checkpoint.meta.model);
+                (cond, f)
+            })
+            .collect();
+        let meta = &self.checkpoint.meta;
+        let mut out: Vec<Vec<Scene>> = vec![Vec::with_capacity(samples); inputs.len()];
+        let mut done = 0;
+        for chunk in jobs.chunks(MAX_BATCH) {
+            let mut batch = HostBatch::default();
+            let mut seeds = Vec::with_capacity(chunk.len());
+            for &(i, k) in chunk {
+                batch.push_features(&features[i].1);
+                seeds.push(Self::item_seed(seed, i, k));
+            }
+            let scenes: Vec<&Scene> = chunk.iter().map(|&(i, _)| &inputs[i]).collect();
+            let mut guide = guidance(&scenes);
+            let cond = batch.cond(&meta.model)?;
+            let tokens = sample(
+                &self.checkpoint.denoiser,
+                &self.schedule,
+                &cond,
+                &seeds,
+                guide.as_mut().map(|g| g.as_mut() as &mut dyn Guidance),
+            )?;
+            let per_item = meta.model.slots() * meta.model.token_dim();
+            for (&(i, _), t) in chunk.iter().zip(tokens.chunks_exact(per_item)) {
+                let mut scene = inputs[i].clone();
+                let center = features[i].0.window.center;
+                scene.objects = tokens::decode(t, center, scene.floor_plan.height, &meta.bounds, &meta.model);
+                out[i].push(scene);
+            }
+            done += chunk.len();
+            progress(done);
+        }
+        Ok(out)
+    }
+}

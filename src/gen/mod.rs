@@ -1,0 +1,36 @@
+//! The SHADE generator: token encoding, the DiT denoiser, DDPM training and sampling, checkpoints.
+//!
+//! Data flow: a scene's humans and floor plan → [`Features`] (contact boxes, floor-plan and
+//! free-space points) and its objects ↔ tokens ([`tokens`]); [`train`] fits a [`Denoiser`] on a
+//! calibrated dataset and writes a model folder ([`Checkpoint`]); a [`Generator`] samples tokens for
+//! new inputs ([`sample`], with a [`Guidance`] hook) and decodes them into scenes.
+//! Guidance terms themselves, physics and metrics live elsewhere.
+
+mod adamw;
+pub mod checkpoint;
+mod config;
+mod dataset;
+mod error;
+mod features;
+mod generate;
+mod model;
+mod params;
+mod sampler;
+mod schedule;
+mod shipped;
+pub mod tokens;
+pub mod train;
+
+pub use checkpoint::{Checkpoint, CheckpointMeta, TrainingInfo};
+pub use config::ModelConfig;
+pub use dataset::{Example, HostBatch, load_split, split_files};
+pub use error::GenError;
+pub use features::{Dihedral, Features};
+pub use generate::{Generator, GuidanceFactory};
+pub use model::{CondTensors, Denoiser, time_features};
+pub use params::Params;
+pub use sampler::{Guidance, sample};
+pub use schedule::Schedule;
+pub use shipped::{shipped_model, shipped_rooms};
+pub use tokens::Bounds;
+pub use train::{TrainObserver, TrainOptions, TrainOutcome, train};

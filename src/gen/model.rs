@@ -1,0 +1,292 @@
+//! The SHADE denoiser: a DiT over object-slot tokens with adaLN-Zero, conditioned on the diffusion
+//! time, the contact boxes, the floor plan and the free-space mask.
+//!
+//! The condition vector c = time MLP + floor-plan PointNet + free-space PointNet + pooled contact
+//! encoding modulates every block (shift, scale and gate of attention and MLP, all zero-initialised,
+//! so every block starts as the identity). With `contact_tokens` the encoded contact boxes also join
+//! the attention as extra tokens (masked where a scene has fewer boxes); only object tokens are read
+//! out. There are no positional embeddings: the model is equivariant to the order of the slots.
+//!
+//! This module only maps tensors to tensors; tokens, features and sampling live beside it.
+
+use super::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES, TIME_FEATURES};
+use super::params::{Init, Linear, Params, layer_norm};
+use super::{GenError, ModelConfig};
+use candle_core::{D, Device, Tensor};
+
+/// The conditioning of a batch, as tensors.
+#[derive(Debug, Clone)]
+pub struct CondTensors {
+    /// Contact boxes (B, K, 11).
+    pub contacts: Tensor,
+    /// 1 for a real contact box, 0 for padding (B, K).
+    pub contact_mask: Tensor,
+    /// Floor-plan points (B, P, 4).
+    pub floor: Tensor,
+    /// Free-space points (B, Q, 3).
+    pub free: Tensor,
+}
+
+/// A PointNet: a shared per-point MLP followed by a max over the points.
+#[derive(Debug, Clone)]
+struct PointNet {
+    layers: [Linear; 3],
+}
+
+impl PointNet {
+    fn new(p: &mut Params, name: &str, input: usize, width: usize, out: usize) -> Result<PointNet, GenError> {
+        Ok(PointNet {
+            layers: [
+                p.linear(&format!("{name}.0"), input, width, false)?,
+                p.linear(&format!("{name}.1"), width, 2 * width, false)?,
+                p.linear(&format!("{name}.2"), 2 * width, out, false)?,
+            ],
+        })
+    }
+
+    fn forward(&self, points: &Tensor) -> Result<Tensor, GenError> {
+        let h = self.layers[0].forward(points)?.relu()?;
+        let h = self.layers[1].forward(&h)?.relu()?;
+        Ok(self.layers[2].forward(&h)?.max(1)?)
+    }
+}
+
+/// One DiT block with adaLN-Zero.
+#[derive(Debug, Clone)]
+struct Block {
+    modulation: Linear,
+    qkv: Linear,
+    proj: Linear,
+    fc1: Linear,
+    fc2: Linear,
+    heads: usize,
+}
+
+impl Block {
+    fn new(p: &mut Params, name: &str, cfg: &ModelConfig) -> Result<Block, GenError> {
+        let d = cfg.d_model;
+        Ok(Block {
+            modulation: p.linear(&format!("{name}.modulation"), d, 6 * d, true)?,
+            qkv: p.linear(&format!("{name}.qkv"), d, 3 * d, false)?,
+            proj: p.linear(&format!("{name}.proj"), d, d, false)?,
+            fc1: p.linear(&format!("{name}.fc1"), d, cfg.mlp_ratio * d, false)?,
+            fc2: p.linear(&format!("{name}.fc2"), cfg.mlp_ratio * d, d, false)?,
+            heads: cfg.heads,
+        })
+    }
+
+    /// `x` (B, N, d), `c` = SiLU(condition) (B, d), `bias` (B, 1, 1, N) additive attention mask.
+    fn forward(&self, x: &Tensor, c: &Tensor, bias: Option<&Tensor>) -> Result<Tensor, GenError> {
+        let d = x.dim(D::Minus1)?;
+        let m = self.modulation.forward(c)?;
+        let part = |i: usize| -> Result<Tensor, GenError> { Ok(m.narrow(1, i * d, d)?.unsqueeze(1)?) };
+        let (shift1, scale1, gate1) = (part(0)?, part(1)?, part(2)?);
+        let (shift2, scale2, gate2) = (part(3)?, part(4)?, part(5)?);
+        let h = modulate(&layer_norm(x)?, &shift1, &scale1)?;
+        let x = (x + self.attention(&h, bias)?.broadcast_mul(&gate1)?)?;
+        let h = modulate(&layer_norm(&x)?, &shift2, &scale2)?;
+        let h = self.fc2.forward(&self.fc1.forward(&h)?.silu()?)?;
+        Ok((x + h.broadcast_mul(&gate2)?)?)
+    }
+
+    fn attention(&self, h: &Tensor, bias: Option<&Tensor>) -> Result<Tensor, GenError> {
+        let (b, n, d) = h.dims3()?;
+        let dh = d / self.heads;
+        let qkv = self.qkv.forward(h)?.reshape((b, n, 3, self.heads, dh))?;
+        let take = |i: usize| -> Result<Tensor, GenError> {
+            Ok(qkv.narrow(2, i, 1)?.squeeze(2)?.transpose(1, 2)?.contiguous()?)
+        };
+        let (q, k, v) = (take(0)?, take(1)?, take(2)?);
+        let mut scores = (q.matmul(&k.t()?)? * (1.0 / (dh as f64).sqrt()))?;
+        if let Some(bias) = bias {
+            scores = scores.broadcast_add(bias)?;
+        }
+        let weights = candle_nn::ops::softmax(&scores, D::Minus1)?;
+        let out = weights.matmul(&v)?.transpose(1, 2)?.reshape((b, n, d))?;
+        self.proj.forward(&out)
+    }
+}
+
+fn modulate(x: &Tensor, shift: &Tensor, scale: &Tensor) -> Result<Tensor, GenError> {
+    Ok(x.broadcast_mul(&(scale + 1.0)?)?.broadcast_add(shift)?)
+}
+
+/// The denoiser ε_θ(x_t, t, conditions).
+#[derive(Debug, Clone)]
+pub struct Denoiser {
+    cfg: ModelConfig,
+    input: Linear,
+    time: [Linear; 2],
+    contact: [Linear; 2],
+    contact_kind: Tensor,
+    floor: PointNet,
+    free: PointNet,
+    blocks: Vec<Block>,
+    final_modulation: Linear,
+    output: Linear,
+}
+
+impl Denoiser {
+    /// Builds the model, taking every parameter from `p` (fresh or loaded).
+    pub fn new(cfg: &ModelConfig, p: &mut Params) -> Result<Denoiser, GenError> {
+        if let Some(problem) = cfg.problem() {
+            return Err(GenError::checkpoint("", format!("bad model config: {problem}")));
+        }
+        let d = cfg.d_model;
+        let w = cfg.pointnet_width;
+        let model = Denoiser {
+            cfg: cfg.clone(),
+            input: p.linear("input", cfg.token_dim(), d, false)?,
+            time: [p.linear("time.0", TIME_FEATURES, d, false)?, p.linear("time.1", d, d, false)?],
+            contact: [p.linear("contact.0", CONTACT_FEATURES, d, false)?, p.linear("contact.1", d, d, false)?],
+            contact_kind: p.get("contact_kind", &[1, 1, d], Init::Normal(0.02))?,
+            floor: PointNet::new(p, "floor", FLOOR_FEATURES, w, d)?,
+            free: PointNet::new(p, "free", FREE_FEATURES, w, d)?,
+            blocks: (0..cfg.blocks).map(|i| Block::new(p, &format!("blocks.{i}"), cfg)).collect::<Result<_, _>>()?,
+            final_modulation: p.linear("final.modulation", d, 2 * d, true)?,
+            output: p.linear("final.output", d, cfg.token_dim(), true)?,
+        };
+        p.finish()?;
+        Ok(model)
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &ModelConfig {
+        &self.cfg
+    }
+
+    /// Predicted noise (B, S, token_dim) for noisy tokens `x` (B, S, token_dim) at steps `t`.
+    pub fn forward(&self, x: &Tensor, t: &[usize], cond: &CondTensors) -> Result<Tensor, GenError> {
+        let (b, slots, _) = x.dims3()?;
+        let time = self.time[1].forward(&self.time[0].forward(&time_features(t, x.device())?)?.silu()?)?;
+        let contacts = self.contact[1].forward(&self.contact[0].forward(&cond.contacts)?.silu()?)?;
+        let mask = cond.contact_mask.unsqueeze(2)?;
+        let count = (mask.sum(1)? + 1e-6)?;
+        let pooled = contacts.broadcast_mul(&mask)?.sum(1)?.broadcast_div(&count)?;
+        let c = (time + pooled + self.floor.forward(&cond.floor)? + self.free.forward(&cond.free)?)?.silu()?;
+
+        let mut h = self.input.forward(x)?;
+        let mut bias = None;
+        if self.cfg.contact_tokens {
+            let k = cond.contact_mask.dim(1)?;
+            h = Tensor::cat(&[&h, &contacts.broadcast_add(&self.contact_kind)?], 1)?;
+            let visible = Tensor::cat(&[&Tensor::ones((b, slots), x.dtype(), x.device())?, &cond.contact_mask], 1)?;
+            bias = Some(((visible - 1.0)? * 1e9)?.reshape((b, 1, 1, slots + k))?);
+        }
+        for block in &self.blocks {
+            h = block.forward(&h, &c, bias.as_ref())?;
+        }
+        let h = h.narrow(1, 0, slots)?;
+        let d = self.cfg.d_model;
+        let m = self.final_modulation.forward(&c)?;
+        let (shift, scale) = (m.narrow(1, 0, d)?.unsqueeze(1)?, m.narrow(1, d, d)?.unsqueeze(1)?);
+        self.output.forward(&modulate(&layer_norm(&h)?, &shift, &scale)?)
+    }
+}
+
+/// Sinusoidal features of the steps `t`: (B, TIME_FEATURES), half sines, half cosines.
+pub fn time_features(t: &[usize], device: &Device) -> Result<Tensor, GenError> {
+    let half = TIME_FEATURES / 2;
+    let mut values = Vec::with_capacity(t.len() * TIME_FEATURES);
+    for &step in t {
+        let freqs = (0..half).map(|i| (-(10_000f64.ln()) * i as f64 / half as f64).exp() * step as f64);
+        let angles: Vec<f64> = freqs.collect();
+        values.extend(angles.iter().map(|a| a.sin() as f32));
+        values.extend(angles.iter().map(|a| a.cos() as f32));
+    }
+    Ok(Tensor::from_vec(values, (t.len(), TIME_FEATURES), device)?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::RoomType;
+
+    fn random(shape: &[usize], seed: u64) -> Tensor {
+        let mut rng = crate::data::Rng::new(seed);
+        let n = shape.iter().product();
+        Tensor::from_vec((0..n).map(|_| rng.normal() as f32).collect::<Vec<_>>(), shape, &Device::Cpu).unwrap()
+    }
+
+    fn cond(cfg: &ModelConfig, b: usize, contacts: usize) -> CondTensors {
+        let k = cfg.max_contacts;
+        let mask: Vec<f32> = (0..b * k).map(|i| if i % k < contacts { 1.0 } else { 0.0 }).collect();
+        CondTensors {
+            contacts: random(&[b, k, CONTACT_FEATURES], 1),
+            contact_mask: Tensor::from_vec(mask, (b, k), &Device::Cpu).unwrap(),
+            floor: random(&[b, cfg.floor_points, FLOOR_FEATURES], 2),
+            free: random(&[b, cfg.free_points, FREE_FEATURES], 3),
+        }
+    }
+
+    #[test]
+    fn shapes_and_zero_output_at_initialisation() {
+        let cfg = ModelConfig::tiny(RoomType::Bedroom);
+        let mut p = Params::random(7);
+        let model = Denoiser::new(&cfg, &mut p).unwrap();
+        let x = random(&[3, cfg.slots(), cfg.token_dim()], 4);
+        let out = model.forward(&x, &[0, 50, 199], &cond(&cfg, 3, 2)).unwrap();
+        assert_eq!(out.dims(), &[3, 12, 30]);
+        // adaLN-Zero: the final modulation and output layer start at zero, so the prediction is zero.
+        let max = out.abs().unwrap().max_all().unwrap().to_scalar::<f32>().unwrap();
+        assert_eq!(max, 0.0);
+    }
+
+    #[test]
+    fn every_block_starts_as_the_identity() {
+        let cfg = ModelConfig::tiny(RoomType::Living);
+        let mut p = Params::random(3);
+        let model = Denoiser::new(&cfg, &mut p).unwrap();
+        let x = random(&[2, 25, cfg.d_model], 5);
+        let c = random(&[2, cfg.d_model], 6);
+        for block in &model.blocks {
+            let y = block.forward(&x, &c, None).unwrap();
+            let diff = (y - &x).unwrap().abs().unwrap().max_all().unwrap().to_scalar::<f32>().unwrap();
+            assert_eq!(diff, 0.0);
+        }
+    }
+
+    #[test]
+    fn masked_contact_tokens_do_not_change_the_objects() {
+        // Perturb the padded contact boxes: object outputs must not move.
+        let cfg = ModelConfig::tiny(RoomType::Bedroom);
+        let mut p = Params::random(1);
+        let mut model = Denoiser::new(&cfg, &mut p).unwrap();
+        // Give the output layers weights so outputs depend on the attention.
+        model.final_modulation = Params::random(9).linear("m", cfg.d_model, 2 * cfg.d_model, false).unwrap();
+        model.output = Params::random(10).linear("o", cfg.d_model, cfg.token_dim(), false).unwrap();
+        for block in &mut model.blocks {
+            block.modulation = Params::random(11).linear("b", cfg.d_model, 6 * cfg.d_model, false).unwrap();
+        }
+        let x = random(&[1, cfg.slots(), cfg.token_dim()], 4);
+        let a = cond(&cfg, 1, 2);
+        let mut b = a.clone();
+        let k = cfg.max_contacts;
+        let keep = a.contacts.narrow(1, 0, 2).unwrap();
+        let noise = random(&[1, k - 2, CONTACT_FEATURES], 99);
+        b.contacts = Tensor::cat(&[&keep, &noise], 1).unwrap();
+        let ya = model.forward(&x, &[10], &a).unwrap();
+        let yb = model.forward(&x, &[10], &b).unwrap();
+        let diff = (ya - yb).unwrap().abs().unwrap().max_all().unwrap().to_scalar::<f32>().unwrap();
+        assert!(diff < 1e-5, "{diff}");
+    }
+
+    #[test]
+    fn the_same_seed_builds_the_same_model_and_checkpoints_must_fit() {
+        let cfg = ModelConfig::tiny(RoomType::Bedroom);
+        let (mut a, mut b) = (Params::random(5), Params::random(5));
+        Denoiser::new(&cfg, &mut a).unwrap();
+        Denoiser::new(&cfg, &mut b).unwrap();
+        let (sa, sb) = (a.snapshot().unwrap(), b.snapshot().unwrap());
+        for (name, t) in &sa {
+            let diff = (t - &sb[name]).unwrap().abs().unwrap().max_all().unwrap().to_scalar::<f32>().unwrap();
+            assert_eq!(diff, 0.0, "{name}");
+        }
+        // A living-room checkpoint does not fit a bedroom model (token width differs).
+        let mut living = Params::random(5);
+        Denoiser::new(&ModelConfig::tiny(RoomType::Living), &mut living).unwrap();
+        let tensors = living.snapshot().unwrap().into_iter().collect();
+        let err = Denoiser::new(&cfg, &mut Params::loaded(tensors)).unwrap_err().to_string();
+        assert!(err.contains("input.weight has shape [32, 33], the model needs [32, 30]"), "{err}");
+    }
+}

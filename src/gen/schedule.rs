@@ -1,0 +1,87 @@
+//! The DDPM noise schedule: linear betas over T steps, ᾱ and the posterior coefficients.
+//!
+//! Betas run linearly from `1000/T · 1e-4` to `1000/T · 0.02` (DDPM's range rescaled to T steps, so
+//! T = 200 still ends at pure noise: ᾱ_T ≈ 5e-5). Everything is computed once, in f64.
+
+/// Precomputed schedule of one model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Schedule {
+    /// β_t for t = 0..T.
+    pub betas: Vec<f64>,
+    /// ᾱ_t = Π_{s ≤ t} (1 − β_s).
+    pub alpha_bars: Vec<f64>,
+}
+
+impl Schedule {
+    /// The linear schedule with `steps` steps.
+    pub fn linear(steps: usize) -> Schedule {
+        let scale = 1000.0 / steps as f64;
+        let (start, end) = (scale * 1e-4, scale * 0.02);
+        let betas: Vec<f64> = (0..steps)
+            .map(|t| if steps == 1 { start } else { start + (end - start) * t as f64 / (steps - 1) as f64 })
+            .collect();
+        let mut product = 1.0;
+        let alpha_bars = betas
+            .iter()
+            .map(|b| {
+                product *= 1.0 - b;
+                product
+            })
+            .collect();
+        Schedule { betas, alpha_bars }
+    }
+
+    /// Number of steps T.
+    pub fn steps(&self) -> usize {
+        self.betas.len()
+    }
+
+    /// ᾱ_{t−1}, with ᾱ_{−1} = 1.
+    pub fn alpha_bar_prev(&self, t: usize) -> f64 {
+        if t == 0 { 1.0 } else { self.alpha_bars[t - 1] }
+    }
+
+    /// Coefficients (of x̂0, of x_t) of the posterior mean q(x_{t−1} | x_t, x̂0), and its variance.
+    pub fn posterior(&self, t: usize) -> (f64, f64, f64) {
+        let beta = self.betas[t];
+        let ab = self.alpha_bars[t];
+        let ab_prev = self.alpha_bar_prev(t);
+        let c0 = beta * ab_prev.sqrt() / (1.0 - ab);
+        let ct = (1.0 - ab_prev) * (1.0 - beta).sqrt() / (1.0 - ab);
+        let var = beta * (1.0 - ab_prev) / (1.0 - ab);
+        (c0, ct, var)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn alpha_bars_match_hand_computed_values() {
+        let s = Schedule::linear(200);
+        let b0 = 5e-4;
+        let b1 = 5e-4 + (0.1 - 5e-4) / 199.0;
+        assert!((s.betas[0] - b0).abs() < 1e-15);
+        assert!((s.betas[199] - 0.1).abs() < 1e-15);
+        assert!((s.alpha_bars[0] - (1.0 - b0)).abs() < 1e-15);
+        assert!((s.alpha_bars[1] - (1.0 - b0) * (1.0 - b1)).abs() < 1e-15);
+        // Σβ = 200 · (5e-4 + 0.1) / 2 = 10.05, so ᾱ_T ≈ exp(−10.05 − Σβ²/2) ≈ 2.0e-5 … 4.4e-5.
+        assert!(s.alpha_bars[199] > 1e-5 && s.alpha_bars[199] < 5e-5, "{}", s.alpha_bars[199]);
+    }
+
+    #[test]
+    fn posterior_at_the_first_step_returns_the_clean_estimate() {
+        let s = Schedule::linear(200);
+        let (c0, ct, var) = s.posterior(0);
+        assert!((c0 - 1.0).abs() < 1e-12 && ct.abs() < 1e-12 && var.abs() < 1e-12);
+        // Posterior mean of x0 = x_t = 1 must be 1 at every t when x_t is the noiseless image scaled.
+        for t in [1, 50, 199] {
+            let (c0, ct, _) = s.posterior(t);
+            let x0 = 1.0;
+            let xt = s.alpha_bars[t].sqrt() * x0;
+            let mean = c0 * x0 + ct * xt;
+            assert!((mean - s.alpha_bar_prev(t).sqrt() * x0).abs() < 1e-12);
+        }
+    }
+}

@@ -1,0 +1,27 @@
+//! The models shipped in `models/<room>/`, embedded into the library at build time, so that
+//! `generate` and `demo` need no files beside the binary.
+
+use super::checkpoint::parse_meta;
+use super::{Checkpoint, GenError};
+use crate::scene::RoomType;
+use std::path::PathBuf;
+
+include!(concat!(env!("OUT_DIR"), "/shipped_models.rs"));
+
+/// The shipped model for `room`.
+pub fn shipped_model(room: RoomType) -> Result<Checkpoint, GenError> {
+    let origin = PathBuf::from(format!("models/{}", room.name()));
+    let (_, config, weights) = SHIPPED.iter().find(|(r, _, _)| *r == room.name()).ok_or_else(|| {
+        GenError::checkpoint(&origin, format!("no {room} model was shipped with this build; pass --model DIR"))
+    })?;
+    let meta = parse_meta(config, &origin.join("config.json"))?;
+    if meta.model.room_type != room {
+        return Err(GenError::checkpoint(&origin, format!("shipped config is for {}", meta.model.room_type)));
+    }
+    Checkpoint::from_parts(meta, weights, &origin.join("model.safetensors"))
+}
+
+/// Room types with a shipped model.
+pub fn shipped_rooms() -> Vec<RoomType> {
+    RoomType::ALL.into_iter().filter(|r| SHIPPED.iter().any(|(name, _, _)| *name == r.name())).collect()
+}

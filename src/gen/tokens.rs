@@ -1,0 +1,208 @@
+//! Object slots ↔ tokens: `[centre (3), size (3), cos yaw, sin yaw, one-hot of C+1 classes]`, the
+//! continuous parts scaled to [-1, 1] by the training data's bounds, classes as ±1, the last class
+//! meaning "empty slot".
+//!
+//! Centres are relative to the room window's centre. The x and y bounds are made symmetric and equal
+//! (±the largest |x| or |y| seen), so rotating or mirroring a room about the window centre — the
+//! training augmentation — maps tokens to tokens. Decoding snaps each object's height to what every
+//! training scene has: floor pieces stand on the floor, lamps hang from the ceiling.
+
+use super::ModelConfig;
+use crate::data::SplitStats;
+use crate::scene::{Object, Scene};
+use glam::DVec2;
+use serde::{Deserialize, Serialize};
+
+/// Bounds that scale continuous attributes to [-1, 1].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Bounds {
+    /// Smallest centre (relative to the window centre).
+    pub center_min: [f64; 3],
+    /// Largest centre.
+    pub center_max: [f64; 3],
+    /// Smallest full size.
+    pub size_min: [f64; 3],
+    /// Largest full size.
+    pub size_max: [f64; 3],
+}
+
+impl Bounds {
+    /// The bounds of a dataset split, with x and y made symmetric and equal.
+    pub fn from_stats(split: &SplitStats) -> Bounds {
+        let m = (0..2).map(|k| split.center_min[k].abs().max(split.center_max[k].abs())).fold(0.0, f64::max);
+        Bounds {
+            center_min: [-m, -m, split.center_min[2]],
+            center_max: [m, m, split.center_max[2]],
+            size_min: split.size_min,
+            size_max: split.size_max,
+        }
+    }
+
+    /// Whether every bound is finite and ordered.
+    pub fn is_valid(&self) -> bool {
+        let ok =
+            |lo: &[f64; 3], hi: &[f64; 3]| (0..3).all(|k| lo[k].is_finite() && hi[k].is_finite() && lo[k] <= hi[k]);
+        ok(&self.center_min, &self.center_max) && ok(&self.size_min, &self.size_max)
+    }
+
+    /// Centre (relative to the window) → [-1, 1]³.
+    pub fn scale_center(&self, c: [f64; 3]) -> [f64; 3] {
+        std::array::from_fn(|k| scale(c[k], self.center_min[k], self.center_max[k]))
+    }
+
+    /// Size → [-1, 1]³.
+    pub fn scale_size(&self, s: [f64; 3]) -> [f64; 3] {
+        std::array::from_fn(|k| scale(s[k], self.size_min[k], self.size_max[k]))
+    }
+
+    /// [-1, 1]³ → centre relative to the window.
+    pub fn unscale_center(&self, v: [f64; 3]) -> [f64; 3] {
+        std::array::from_fn(|k| unscale(v[k], self.center_min[k], self.center_max[k]))
+    }
+
+    /// [-1, 1]³ → size.
+    pub fn unscale_size(&self, v: [f64; 3]) -> [f64; 3] {
+        std::array::from_fn(|k| unscale(v[k], self.size_min[k], self.size_max[k]))
+    }
+}
+
+fn scale(v: f64, lo: f64, hi: f64) -> f64 {
+    if hi - lo < 1e-9 { 0.0 } else { 2.0 * (v - lo) / (hi - lo) - 1.0 }
+}
+
+fn unscale(v: f64, lo: f64, hi: f64) -> f64 {
+    lo + (v + 1.0) * 0.5 * (hi - lo)
+}
+
+/// Index of the first class feature in a token.
+pub const CLASS_OFFSET: usize = 8;
+
+/// The tokens of a scene's objects (slots × token_dim, empty slots after the objects) and the loss
+/// weights: an empty slot's continuous attributes carry no loss, only its class does.
+/// Objects beyond the slot count are dropped.
+pub fn encode(scene: &Scene, window_center: DVec2, bounds: &Bounds, cfg: &ModelConfig) -> (Vec<f32>, Vec<f32>) {
+    let dim = cfg.token_dim();
+    let classes = cfg.classes();
+    let mut tokens = vec![0f32; cfg.slots() * dim];
+    let mut weights = vec![1f32; cfg.slots() * dim];
+    let categories = cfg.room_type.categories();
+    let mut placed = 0;
+    for o in &scene.objects {
+        let Some(class) = categories.iter().position(|&c| c == o.category) else { continue };
+        if placed == cfg.slots() {
+            break;
+        }
+        let t = &mut tokens[placed * dim..(placed + 1) * dim];
+        let rel = [o.center[0] - window_center.x, o.center[1] - window_center.y, o.center[2]];
+        let c = bounds.scale_center(rel);
+        let s = bounds.scale_size(o.size);
+        let values = [c[0], c[1], c[2], s[0], s[1], s[2], o.yaw.cos(), o.yaw.sin()];
+        for (dst, v) in t.iter_mut().zip(values) {
+            *dst = v as f32;
+        }
+        for k in 0..classes {
+            t[CLASS_OFFSET + k] = if k == class { 1.0 } else { -1.0 };
+        }
+        placed += 1;
+    }
+    for slot in placed..cfg.slots() {
+        let t = &mut tokens[slot * dim..(slot + 1) * dim];
+        for k in 0..classes {
+            t[CLASS_OFFSET + k] = if k == classes - 1 { 1.0 } else { -1.0 };
+        }
+        weights[slot * dim..slot * dim + CLASS_OFFSET].fill(0.0);
+    }
+    (tokens, weights)
+}
+
+/// The objects of generated tokens (slots × token_dim): one per slot whose largest class is not
+/// "empty", ids `o0`, `o1`, … in slot order.
+pub fn decode(tokens: &[f32], window_center: DVec2, ceiling: f64, bounds: &Bounds, cfg: &ModelConfig) -> Vec<Object> {
+    let dim = cfg.token_dim();
+    let categories = cfg.room_type.categories();
+    let mut objects = Vec::new();
+    for t in tokens.chunks_exact(dim) {
+        let class = (0..cfg.classes())
+            .max_by(|&a, &b| t[CLASS_OFFSET + a].total_cmp(&t[CLASS_OFFSET + b]))
+            .expect("at least one class");
+        let Some(&category) = categories.get(class) else { continue };
+        let v = |k: usize| (t[k] as f64).clamp(-1.0, 1.0);
+        let c = bounds.unscale_center([v(0), v(1), v(2)]);
+        let size = bounds.unscale_size([v(3), v(4), v(5)]).map(|s| s.max(0.02));
+        let z = if category.is_hanging() { ceiling - size[2] * 0.5 } else { size[2] * 0.5 };
+        let yaw = (t[7] as f64).atan2(t[6] as f64);
+        objects.push(Object {
+            id: format!("o{}", objects.len()),
+            category,
+            center: [c[0] + window_center.x, c[1] + window_center.y, z],
+            size,
+            yaw: if yaw.is_finite() { yaw } else { 0.0 },
+        });
+    }
+    objects
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::data::{SplitStats, generate_room};
+    use crate::geom::RoomWindow;
+    use crate::scene::RoomType;
+
+    fn bounds_of(scenes: &[Scene]) -> Bounds {
+        let mut stats = SplitStats::default();
+        scenes.iter().for_each(|s| stats.add(s));
+        Bounds::from_stats(&stats)
+    }
+
+    #[test]
+    fn encode_then_decode_gives_the_scene_back() {
+        for room in RoomType::ALL {
+            let scenes: Vec<Scene> = (0..20).map(|i| generate_room(room, 3, i, false).scene).collect();
+            let bounds = bounds_of(&scenes);
+            let cfg = ModelConfig::tiny(room);
+            for scene in &scenes {
+                let window = RoomWindow::for_room(room, &scene.floor_plan.polygon());
+                let (tokens, weights) = encode(scene, window.center, &bounds, &cfg);
+                assert_eq!(tokens.len(), cfg.slots() * cfg.token_dim());
+                assert!(tokens.iter().all(|v| (-1.0 - 1e-6..=1.0 + 1e-6).contains(v)));
+                let back = decode(&tokens, window.center, scene.floor_plan.height, &bounds, &cfg);
+                assert_eq!(back.len(), scene.objects.len().min(cfg.slots()));
+                for (a, b) in scene.objects.iter().zip(&back) {
+                    assert_eq!(a.category, b.category);
+                    for k in 0..3 {
+                        assert!((a.center[k] - b.center[k]).abs() < 1e-5, "{room} {a:?} {b:?}");
+                        assert!((a.size[k] - b.size[k]).abs() < 1e-5);
+                    }
+                    let dyaw = (a.yaw - b.yaw).sin().abs() + (1.0 - (a.yaw - b.yaw).cos());
+                    assert!(dyaw < 1e-5);
+                }
+                // Empty slots weigh only their classes.
+                let dim = cfg.token_dim();
+                let empty = cfg.slots() - back.len();
+                let zero: usize = weights.iter().filter(|w| **w == 0.0).count();
+                assert_eq!(zero, empty * CLASS_OFFSET);
+                assert_eq!(weights.len(), cfg.slots() * dim);
+            }
+        }
+    }
+
+    #[test]
+    fn symmetric_bounds_and_hand_computed_scaling() {
+        let b = Bounds {
+            center_min: [-2.0, -3.0, 0.0],
+            center_max: [2.0, 3.0, 2.0],
+            size_min: [0.5, 0.5, 0.5],
+            size_max: [2.5, 1.5, 2.5],
+        };
+        assert_eq!(b.scale_center([1.0, -1.5, 0.5]), [0.5, -0.5, -0.5]);
+        assert_eq!(b.scale_size([1.5, 1.0, 2.5]), [0.0, 0.0, 1.0]);
+        assert_eq!(b.unscale_size([0.0, 0.0, 1.0]), [1.5, 1.0, 2.5]);
+        let mut stats = SplitStats::default();
+        stats.add(&generate_room(RoomType::Bedroom, 1, 0, false).scene);
+        let s = Bounds::from_stats(&stats);
+        assert_eq!(s.center_min[0], -s.center_max[0]);
+        assert_eq!(s.center_min[0], s.center_min[1]);
+    }
+}

@@ -1,0 +1,474 @@
+//! Training: L_simple (ε-prediction MSE, weighted so empty slots' attributes carry no loss) with
+//! AdamW, linear warm-up then cosine decay, EMA weights, validation loss of the EMA weights on a
+//! fixed draw of the val split, a JSON-lines log, and checkpoints every few minutes, at the end
+//! and when asked to stop.
+//!
+//! Step s draws its batch, augmentations, diffusion steps and noise from `Rng::for_item(seed, s)`,
+//! and checkpoints are taken only right after a log line, so a resumed run continues exactly as an
+//! uninterrupted one would.
+
+use super::adamw::{AdamW, AdamWConfig};
+use super::checkpoint::{
+    CONFIG_FILE, CheckpointMeta, MODEL_FORMAT, STATE_FILE, STATE_META_FILE, TrainingInfo, WEIGHTS_FILE, at, fnv1a_hex,
+    read_tensors, write_json, write_tensors,
+};
+use super::dataset::{Example, HostBatch, load_split};
+use super::{Bounds, Denoiser, Dihedral, GenError, ModelConfig, Params, Schedule};
+use crate::data::{Rng, read_stats};
+use candle_core::{Tensor, Var};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+/// What a training run does.
+#[derive(Debug, Clone)]
+pub struct TrainOptions {
+    /// Calibrated dataset folder (with stats.json, train/ and val/).
+    pub data: PathBuf,
+    /// Model folder to write.
+    pub out: PathBuf,
+    /// Model shape (its room type must be the dataset's).
+    pub model: ModelConfig,
+    /// Total optimiser steps.
+    pub steps: u64,
+    /// Scenes per batch.
+    pub batch: usize,
+    /// Peak learning rate.
+    pub lr: f64,
+    /// Linear warm-up steps.
+    pub warmup: u64,
+    /// EMA decay.
+    pub ema_decay: f64,
+    /// Seed of initialisation, batches and noise.
+    pub seed: u64,
+    /// Steps between log lines (and possible checkpoints).
+    pub log_every: u64,
+    /// Steps between validation losses.
+    pub val_every: u64,
+    /// Validation scenes used (from the start of the val split).
+    pub val_scenes: usize,
+    /// Wall time between checkpoints.
+    pub checkpoint_every: Duration,
+    /// Continue from the checkpoint in `out`.
+    pub resume: bool,
+    /// The command line, recorded in config.json.
+    pub command: String,
+}
+
+impl TrainOptions {
+    /// Defaults for `model` on `data` → `out`.
+    pub fn new(data: PathBuf, out: PathBuf, model: ModelConfig) -> TrainOptions {
+        TrainOptions {
+            data,
+            out,
+            model,
+            steps: 12_000,
+            batch: 32,
+            lr: 3e-4,
+            warmup: 500,
+            ema_decay: 0.999,
+            seed: 0,
+            log_every: 50,
+            val_every: 1_000,
+            val_scenes: 256,
+            checkpoint_every: Duration::from_secs(300),
+            resume: false,
+            command: String::new(),
+        }
+    }
+
+    /// Learning rate at `step`: linear warm-up, then cosine down to a tenth.
+    pub fn lr_at(&self, step: u64) -> f64 {
+        if step < self.warmup {
+            return self.lr * (step + 1) as f64 / self.warmup as f64;
+        }
+        let span = self.steps.saturating_sub(self.warmup).max(1) as f64;
+        let progress = ((step - self.warmup) as f64 / span).min(1.0);
+        self.lr * (0.1 + 0.9 * 0.5 * (1.0 + (std::f64::consts::PI * progress).cos()))
+    }
+}
+
+/// One line of `log.jsonl`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LogLine {
+    /// Steps done.
+    pub step: u64,
+    /// Mean training loss over the steps since the last line.
+    pub loss: f64,
+    /// Validation loss of the EMA weights, on validation steps.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub val_loss: Option<f64>,
+    /// Learning rate of the last step.
+    pub lr: f64,
+    /// Training wall time so far (s).
+    pub seconds: f64,
+}
+
+/// `train_state.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct StateMeta {
+    step: u64,
+    adam_steps: u64,
+    seconds: f64,
+    val_loss: Option<f64>,
+    data_hash: String,
+}
+
+/// How a run ended.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TrainOutcome {
+    /// Steps done in total.
+    pub step: u64,
+    /// Whether it stopped early (asked to) rather than finishing.
+    pub stopped: bool,
+    /// Last validation loss.
+    pub val_loss: Option<f64>,
+    /// Total training wall time (s).
+    pub seconds: f64,
+}
+
+/// Things a caller may want to show while training runs.
+pub trait TrainObserver {
+    /// The data is loaded and training starts at `step`.
+    fn started(&mut self, _step: u64, _total: u64, _train_scenes: usize, _parameters: usize) {}
+    /// A log line was written.
+    fn logged(&mut self, _line: &LogLine) {}
+    /// A checkpoint was written at `step`.
+    fn checkpointed(&mut self, _step: u64) {}
+}
+
+impl TrainObserver for () {}
+
+/// Trains (or resumes) a model as `opts` says, until done or `stop` is set.
+pub fn train(
+    opts: &TrainOptions,
+    stop: &AtomicBool,
+    observer: &mut dyn TrainObserver,
+) -> Result<TrainOutcome, GenError> {
+    let cfg = &opts.model;
+    if let Some(problem) = cfg.problem() {
+        return Err(GenError::checkpoint(&opts.out, format!("bad model config: {problem}")));
+    }
+    let stats = read_stats(&opts.data)?;
+    let stats_bytes =
+        std::fs::read(opts.data.join("stats.json")).map_err(|e| GenError::io(opts.data.join("stats.json"), e))?;
+    let data_hash = fnv1a_hex(&stats_bytes);
+    if stats.room_type != cfg.room_type {
+        return Err(GenError::Input {
+            path: opts.data.clone(),
+            message: format!("dataset is {} but the model is for {}", stats.room_type, cfg.room_type),
+        });
+    }
+    let train_split = stats.splits.get("train").filter(|s| s.rooms > 0).ok_or_else(|| GenError::Input {
+        path: opts.data.join("stats.json"),
+        message: "the train split is empty".into(),
+    })?;
+    let bounds = Bounds::from_stats(train_split);
+    let train_set = load_split(&opts.data, "train", &bounds, cfg)?;
+    if train_set.is_empty() {
+        return Err(GenError::Input { path: opts.data.join("train"), message: "no scenes".into() });
+    }
+    let mut val_set = load_split(&opts.data, "val", &bounds, cfg)?;
+    val_set.truncate(opts.val_scenes);
+    std::fs::create_dir_all(&opts.out).map_err(|e| GenError::io(&opts.out, e))?;
+
+    let schedule = Schedule::linear(cfg.diffusion_steps);
+    let mut params = Params::random(opts.seed);
+    let model = Denoiser::new(cfg, &mut params)?;
+    let mut adam = AdamW::new(params.vars(), AdamWConfig::default())?;
+    let mut ema = params.snapshot()?;
+    let mut step = 0;
+    let mut seconds = 0.0;
+    let mut val_loss = None;
+    let log_path = opts.out.join("log.jsonl");
+    let mut log: Vec<LogLine> = Vec::new();
+    if opts.resume {
+        let state = restore(opts, &data_hash, params.vars(), &mut adam, &mut ema)?;
+        step = state.step;
+        seconds = state.seconds;
+        val_loss = state.val_loss;
+        log = read_log(&log_path)?.into_iter().filter(|l| l.step <= step).collect();
+    }
+    let info = |step: u64, seconds: f64, val_loss: Option<f64>| TrainingInfo {
+        command: opts.command.clone(),
+        dataset_command: stats.command.clone(),
+        dataset_seed: stats.seed,
+        data_hash: data_hash.clone(),
+        train_scenes: train_set.len(),
+        steps: step,
+        target_steps: opts.steps,
+        batch: opts.batch,
+        lr: opts.lr,
+        ema_decay: opts.ema_decay,
+        seed: opts.seed,
+        wall_seconds: seconds,
+        val_loss,
+    };
+    observer.started(step, opts.steps, train_set.len(), params.count());
+
+    let started = Instant::now();
+    let base_seconds = seconds;
+    let mut last_checkpoint = Instant::now();
+    let (mut loss_sum, mut loss_n) = (0.0, 0u64);
+    let mut stopped = false;
+    while step < opts.steps {
+        let mut rng = Rng::for_item(opts.seed, step);
+        let batch = draw_batch(&train_set, opts.batch, &mut rng, cfg, true);
+        let lr = opts.lr_at(step);
+        let loss = loss_of(&model, &schedule, &batch, &mut rng, cfg)?;
+        loss_sum += loss.to_scalar::<f32>()? as f64;
+        loss_n += 1;
+        let grads = loss.backward()?;
+        adam.step(&grads, lr)?;
+        let decay = opts.ema_decay.min((1.0 + step as f64) / (10.0 + step as f64));
+        update_ema(&mut ema, params.vars(), decay)?;
+        step += 1;
+        stopped = stop.load(Ordering::Relaxed);
+        if step % opts.log_every == 0 || step == opts.steps || stopped {
+            seconds = base_seconds + started.elapsed().as_secs_f64();
+            let validate = step % opts.val_every == 0 || step == opts.steps;
+            if validate && !val_set.is_empty() {
+                val_loss = Some(validation_loss(cfg, &ema, &schedule, &val_set, opts.seed)?);
+            }
+            let line = LogLine {
+                step,
+                loss: loss_sum / loss_n.max(1) as f64,
+                val_loss: if validate { val_loss } else { None },
+                lr,
+                seconds,
+            };
+            (loss_sum, loss_n) = (0.0, 0);
+            log.push(line.clone());
+            write_log(&log, &log_path)?;
+            observer.logged(&line);
+            if stopped || step == opts.steps || last_checkpoint.elapsed() >= opts.checkpoint_every {
+                let meta = CheckpointMeta {
+                    format: MODEL_FORMAT.into(),
+                    model: cfg.clone(),
+                    bounds: bounds.clone(),
+                    categories: cfg.room_type.categories().to_vec(),
+                    training: info(step, seconds, val_loss),
+                };
+                let state = StateMeta { step, adam_steps: adam.steps, seconds, val_loss, data_hash: data_hash.clone() };
+                save(&opts.out, &meta, &state, params.vars(), &adam, &ema)?;
+                crate::export::render_loss_png(&log, &opts.out.join("loss.png"))
+                    .map_err(|e| GenError::io(opts.out.join("loss.png"), e))?;
+                last_checkpoint = Instant::now();
+                observer.checkpointed(step);
+            }
+            if stopped {
+                break;
+            }
+        }
+    }
+    Ok(TrainOutcome { step, stopped, val_loss, seconds })
+}
+
+/// A random batch (with a random symmetry per scene when `augment`).
+fn draw_batch(set: &[Example], size: usize, rng: &mut Rng, cfg: &ModelConfig, augment: bool) -> HostBatch {
+    let mut batch = HostBatch::default();
+    for _ in 0..size {
+        let e = &set[rng.index(set.len())];
+        if augment {
+            let g = Dihedral { quarter_turns: rng.index(4) as u8, mirror: rng.chance(0.5) };
+            batch.push(&e.transformed(g, cfg));
+        } else {
+            batch.push(e);
+        }
+    }
+    batch
+}
+
+/// The weighted L_simple of one batch, with steps and noise drawn from `rng`.
+fn loss_of(
+    model: &Denoiser,
+    schedule: &Schedule,
+    batch: &HostBatch,
+    rng: &mut Rng,
+    cfg: &ModelConfig,
+) -> Result<Tensor, GenError> {
+    let per_item = cfg.slots() * cfg.token_dim();
+    let t: Vec<usize> = (0..batch.size).map(|_| rng.index(schedule.steps())).collect();
+    let noise: Vec<f32> = (0..batch.size * per_item).map(|_| rng.normal() as f32).collect();
+    let noisy: Vec<f32> = batch
+        .tokens
+        .iter()
+        .zip(&noise)
+        .enumerate()
+        .map(|(k, (&x0, &n))| {
+            let ab = schedule.alpha_bars[t[k / per_item]];
+            (ab.sqrt() as f32) * x0 + ((1.0 - ab).sqrt() as f32) * n
+        })
+        .collect();
+    let pred = model.forward(&batch.token_tensor(&noisy, cfg)?, &t, &batch.cond(cfg)?)?;
+    let weights = batch.token_tensor(&batch.weights, cfg)?;
+    let total: f32 = batch.weights.iter().sum();
+    let err = (pred - batch.token_tensor(&noise, cfg)?)?.sqr()?;
+    Ok(((err * weights)?.sum_all()? / total.max(1.0) as f64)?)
+}
+
+/// Loss of the EMA weights on the validation scenes, with fixed steps and noise.
+fn validation_loss(
+    cfg: &ModelConfig,
+    ema: &BTreeMap<String, Tensor>,
+    schedule: &Schedule,
+    val: &[Example],
+    seed: u64,
+) -> Result<f64, GenError> {
+    let model = Denoiser::new(cfg, &mut Params::loaded(ema.clone().into_iter().collect()))?;
+    let (mut sum, mut n) = (0.0, 0.0);
+    for (k, chunk) in val.chunks(64).enumerate() {
+        let mut batch = HostBatch::default();
+        chunk.iter().for_each(|e| batch.push(e));
+        let mut rng = Rng::for_item(seed ^ 0x5641_4c49_4441_5445, k as u64);
+        sum += loss_of(&model, schedule, &batch, &mut rng, cfg)?.to_scalar::<f32>()? as f64 * chunk.len() as f64;
+        n += chunk.len() as f64;
+    }
+    Ok(sum / n)
+}
+
+fn update_ema(ema: &mut BTreeMap<String, Tensor>, vars: &BTreeMap<String, Var>, decay: f64) -> Result<(), GenError> {
+    for (name, var) in vars {
+        let e = ema.get_mut(name).expect("EMA has every parameter");
+        // Detached: otherwise each EMA tensor would keep the graph of all earlier ones alive.
+        *e = ((&*e * decay)? + (var.as_tensor() * (1.0 - decay))?)?.detach();
+    }
+    Ok(())
+}
+
+fn save(
+    dir: &Path,
+    meta: &CheckpointMeta,
+    state: &StateMeta,
+    vars: &BTreeMap<String, Var>,
+    adam: &AdamW,
+    ema: &BTreeMap<String, Tensor>,
+) -> Result<(), GenError> {
+    let mut tensors = BTreeMap::new();
+    for (name, var) in vars {
+        tensors.insert(format!("param.{name}"), var.as_tensor().clone());
+        tensors.insert(format!("adam_m.{name}"), adam.m[name].clone());
+        tensors.insert(format!("adam_v.{name}"), adam.v[name].clone());
+        tensors.insert(format!("ema.{name}"), ema[name].clone());
+    }
+    // State first: a stop between the writes leaves a resumable folder whose weights lag by one
+    // checkpoint at worst.
+    write_tensors(&tensors, &dir.join(STATE_FILE))?;
+    write_json(state, &dir.join(STATE_META_FILE))?;
+    write_tensors(ema, &dir.join(WEIGHTS_FILE))?;
+    write_json(meta, &dir.join(CONFIG_FILE))
+}
+
+fn restore(
+    opts: &TrainOptions,
+    data_hash: &str,
+    vars: &BTreeMap<String, Var>,
+    adam: &mut AdamW,
+    ema: &mut BTreeMap<String, Tensor>,
+) -> Result<StateMeta, GenError> {
+    let meta_path = opts.out.join(STATE_META_FILE);
+    let text = std::fs::read_to_string(&meta_path).map_err(|e| GenError::io(&meta_path, e))?;
+    let state: StateMeta = serde_json::from_str(&text)
+        .map_err(|e| GenError::checkpoint(&meta_path, format!("not a training state: {e}")))?;
+    if state.data_hash != data_hash {
+        return Err(GenError::checkpoint(&meta_path, "was trained on a different dataset (stats.json differs)"));
+    }
+    let config_path = opts.out.join(CONFIG_FILE);
+    let config_text = std::fs::read_to_string(&config_path).map_err(|e| GenError::io(&config_path, e))?;
+    let meta = super::checkpoint::parse_meta(&config_text, &config_path)?;
+    if meta.model != opts.model {
+        return Err(GenError::checkpoint(&config_path, "model config differs from the one asked for"));
+    }
+    let path = opts.out.join(STATE_FILE);
+    let bytes = std::fs::read(&path).map_err(|e| GenError::io(&path, e))?;
+    let mut tensors = read_tensors(&bytes, &path)?;
+    let mut take = |key: String, like: &Tensor| -> Result<Tensor, GenError> {
+        let t = tensors.remove(&key).ok_or_else(|| GenError::checkpoint(&path, format!("lacks tensor {key}")))?;
+        if t.dims() != like.dims() {
+            return Err(GenError::checkpoint(
+                &path,
+                format!("{key} has shape {:?}, expected {:?}", t.dims(), like.dims()),
+            ));
+        }
+        Ok(t)
+    };
+    for (name, var) in vars {
+        let like = var.as_tensor().clone();
+        var.set(&take(format!("param.{name}"), &like)?).map_err(|e| at(e.into(), &path))?;
+        adam.m.insert(name.clone(), take(format!("adam_m.{name}"), &like)?);
+        adam.v.insert(name.clone(), take(format!("adam_v.{name}"), &like)?);
+        ema.insert(name.clone(), take(format!("ema.{name}"), &like)?);
+    }
+    adam.steps = state.adam_steps;
+    Ok(state)
+}
+
+/// Reads `log.jsonl` (missing → empty).
+pub fn read_log(path: &Path) -> Result<Vec<LogLine>, GenError> {
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
+        Err(e) => return Err(GenError::io(path, e)),
+    };
+    text.lines()
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| serde_json::from_str(l).map_err(|e| GenError::checkpoint(path, format!("bad log line: {e}"))))
+        .collect()
+}
+
+fn write_log(log: &[LogLine], path: &Path) -> Result<(), GenError> {
+    let mut text = String::new();
+    for l in log {
+        text.push_str(&serde_json::to_string(l).expect("plain data serialises"));
+        text.push('\n');
+    }
+    crate::scene::write_atomic(path, text.as_bytes()).map_err(|e| GenError::io(path, e))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::RoomType;
+
+    #[test]
+    fn optimiser_moments_and_ema_do_not_keep_graphs_alive() {
+        let cfg = ModelConfig::tiny(RoomType::Bedroom);
+        let mut params = Params::random(1);
+        let model = Denoiser::new(&cfg, &mut params).unwrap();
+        let mut adam = AdamW::new(params.vars(), AdamWConfig::default()).unwrap();
+        let mut ema = params.snapshot().unwrap();
+        let scene = crate::data::generate_room(RoomType::Bedroom, 1, 0, false).scene;
+        let mut stats = crate::data::SplitStats::default();
+        stats.add(&scene);
+        let example = Example::of(&scene, &Bounds::from_stats(&stats), &cfg);
+        let schedule = Schedule::linear(cfg.diffusion_steps);
+        let before = params.snapshot().unwrap();
+        for step in 0..2 {
+            let mut rng = Rng::for_item(0, step);
+            let batch = draw_batch(std::slice::from_ref(&example), 2, &mut rng, &cfg, true);
+            let loss = loss_of(&model, &schedule, &batch, &mut rng, &cfg).unwrap();
+            adam.step(&loss.backward().unwrap(), 1e-3).unwrap();
+            update_ema(&mut ema, params.vars(), 0.5).unwrap();
+        }
+        assert!(adam.is_detached());
+        assert!(ema.values().all(|t| !t.track_op()));
+        // And the step did change the weights (input layer always gets a gradient).
+        let after = params.snapshot().unwrap();
+        let diff = (&after["input.weight"] - &before["input.weight"]).unwrap().abs().unwrap().max_all().unwrap();
+        assert!(diff.to_scalar::<f32>().unwrap() > 0.0);
+    }
+
+    #[test]
+    fn learning_rate_warms_up_then_decays_to_a_tenth() {
+        let mut o = TrainOptions::new(PathBuf::new(), PathBuf::new(), ModelConfig::tiny(RoomType::Bedroom));
+        (o.steps, o.warmup, o.lr) = (1100, 100, 1e-3);
+        assert!((o.lr_at(0) - 1e-5).abs() < 1e-12);
+        assert!((o.lr_at(99) - 1e-3).abs() < 1e-12);
+        assert!((o.lr_at(100) - 1e-3).abs() < 1e-12);
+        assert!((o.lr_at(600) - 0.55e-3).abs() < 1e-12);
+        assert!((o.lr_at(1100) - 1e-4).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,222 @@
+//! The SHADE model end to end at tiny size: training, exact resumption, checkpoints, generation,
+//! bad checkpoints, and the demo on the shipped models.
+
+use crate::{root, shade_sim, stderr, stdout};
+use shade_sim::data::{SynthConfig, synthesize};
+use shade_sim::generator::train::{LogLine, read_log};
+use shade_sim::generator::{Checkpoint, ModelConfig, TrainObserver, TrainOptions, shipped_rooms, train};
+use shade_sim::scene::{RoomType, Scene};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
+
+fn dataset(dir: &Path, room: RoomType) -> PathBuf {
+    let data = dir.join(format!("{room}-data"));
+    let cfg = SynthConfig { room, scenes: 12, seed: 4, command: "test".into() };
+    synthesize(&cfg, &data, &|_| {}).expect("synth writes");
+    data
+}
+
+fn options(data: &Path, out: &Path) -> TrainOptions {
+    let mut o = TrainOptions::new(data.to_path_buf(), out.to_path_buf(), ModelConfig::tiny(RoomType::Bedroom));
+    o.steps = 6;
+    o.batch = 4;
+    o.warmup = 2;
+    o.log_every = 2;
+    o.val_every = 2;
+    o.checkpoint_every = Duration::from_secs(3600);
+    o
+}
+
+/// Stops the run after the log line of `at`.
+struct StopAt<'a>(u64, &'a AtomicBool);
+
+impl TrainObserver for StopAt<'_> {
+    fn logged(&mut self, line: &LogLine) {
+        if line.step >= self.0 {
+            self.1.store(true, Ordering::Relaxed);
+        }
+    }
+}
+
+#[test]
+fn a_stopped_and_resumed_run_ends_with_the_same_weights_as_an_uninterrupted_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dataset(dir.path(), RoomType::Bedroom);
+    let straight = dir.path().join("straight");
+    let outcome = train(&options(&data, &straight), &AtomicBool::new(false), &mut ()).unwrap();
+    assert_eq!((outcome.step, outcome.stopped), (6, false));
+
+    let split = dir.path().join("split");
+    let stop = AtomicBool::new(false);
+    // Stop is noticed right after step 3; the run logs and checkpoints there.
+    let first = train(&options(&data, &split), &stop, &mut StopAt(2, &stop)).unwrap();
+    assert_eq!((first.step, first.stopped), (3, true));
+    let mut resume = options(&data, &split);
+    resume.resume = true;
+    let second = train(&resume, &AtomicBool::new(false), &mut ()).unwrap();
+    assert_eq!((second.step, second.stopped), (6, false));
+
+    let a = std::fs::read(straight.join("model.safetensors")).unwrap();
+    let b = std::fs::read(split.join("model.safetensors")).unwrap();
+    assert!(a == b, "EMA weights differ after resuming");
+    let losses =
+        |d: &Path| read_log(&d.join("log.jsonl")).unwrap().iter().map(|l| (l.step, l.loss)).collect::<Vec<_>>();
+    assert_eq!(losses(&straight).last(), losses(&split).last());
+    assert_eq!(outcome.val_loss, second.val_loss);
+
+    // A checkpoint from another dataset is refused.
+    let other = dir.path().join("other-data");
+    synthesize(&SynthConfig { room: RoomType::Bedroom, scenes: 12, seed: 5, command: "x".into() }, &other, &|_| {})
+        .unwrap();
+    let mut wrong = options(&other, &split);
+    wrong.resume = true;
+    let err = train(&wrong, &AtomicBool::new(false), &mut ()).unwrap_err().to_string();
+    assert!(err.contains("train_state.json") && err.contains("different dataset"), "{err}");
+}
+
+fn train_cli(data: &Path, out: &Path) -> std::process::Output {
+    let (d, o) = (data.to_str().unwrap(), out.to_str().unwrap());
+    shade_sim(&[
+        "train",
+        "--data",
+        d,
+        "--out",
+        o,
+        "--steps",
+        "3",
+        "--batch",
+        "4",
+        "--preset",
+        "tiny",
+        "--log-every",
+        "1",
+    ])
+}
+
+#[test]
+fn train_writes_a_checkpoint_and_generate_is_deterministic() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dataset(dir.path(), RoomType::Bedroom);
+    let model = dir.path().join("model");
+    let out = train_cli(&data, &model);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(stdout(&out).contains("done: step 3 of 3"), "{}", stdout(&out));
+    let ckpt = Checkpoint::load(&model).unwrap();
+    assert_eq!(ckpt.meta.format, "shade-model/1");
+    assert_eq!(ckpt.meta.model, ModelConfig::tiny(RoomType::Bedroom));
+    assert_eq!(ckpt.meta.categories, RoomType::Bedroom.categories());
+    assert_eq!(ckpt.meta.training.steps, 3);
+    assert!(ckpt.meta.training.command.starts_with("shade-sim train --data"), "{}", ckpt.meta.training.command);
+    assert_eq!(ckpt.meta.training.dataset_seed, 4);
+    assert_eq!(read_log(&model.join("log.jsonl")).unwrap().len(), 3);
+    assert!(std::fs::read(model.join("loss.png")).unwrap().starts_with(b"\x89PNG"));
+
+    // The same folder again without --resume would throw the run away: refused.
+    let again = train_cli(&data, &model);
+    assert_eq!(again.status.code(), Some(2));
+    assert!(stderr(&again).contains("--resume"), "{}", stderr(&again));
+
+    let input = root().join("scenes/examples/bedroom_rect.json");
+    let generate = |seed: &str, out: &Path| {
+        let o = shade_sim(&[
+            "generate",
+            "--input",
+            input.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--samples",
+            "2",
+            "--seed",
+            seed,
+            "--model",
+            model.to_str().unwrap(),
+            "--json",
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        assert_eq!(summary["scenes"].as_array().unwrap().len(), 2);
+        (0..2).map(|k| std::fs::read_to_string(out.join(format!("bedroom_rect_{k}.json"))).unwrap()).collect::<Vec<_>>()
+    };
+    let a = generate("5", &dir.path().join("a"));
+    let b = generate("5", &dir.path().join("b"));
+    let c = generate("6", &dir.path().join("c"));
+    assert_eq!(a, b);
+    assert_ne!(a, c);
+    assert_ne!(a[0], a[1]);
+    let original = Scene::load(&input).unwrap();
+    let generated = Scene::load(dir.path().join("a/bedroom_rect_0.json")).unwrap();
+    assert_eq!(generated.floor_plan, original.floor_plan);
+    assert_eq!(generated.humans, original.humans);
+    assert!(generated.objects.iter().all(|o| RoomType::Bedroom.categories().contains(&o.category)));
+}
+
+#[test]
+fn bad_and_mismatched_checkpoints_give_one_error_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dataset(dir.path(), RoomType::Bedroom);
+    let model = dir.path().join("model");
+    assert!(train_cli(&data, &model).status.success());
+    let run = |model: &Path, input: &str| {
+        let input = root().join("scenes/examples").join(input);
+        shade_sim(&[
+            "generate",
+            "--input",
+            input.to_str().unwrap(),
+            "--out",
+            dir.path().join("o").to_str().unwrap(),
+            "--model",
+            model.to_str().unwrap(),
+        ])
+    };
+    let expect_error = |o: std::process::Output, needle: &str| {
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        let e = stderr(&o);
+        assert_eq!(e.lines().count(), 1, "{e}");
+        assert!(e.starts_with("error: ") && e.contains(needle), "{e}");
+    };
+    expect_error(run(&model, "living_rect.json"), "is a living but the model generates bedroom");
+
+    let corrupt = dir.path().join("corrupt");
+    std::fs::create_dir(&corrupt).unwrap();
+    std::fs::copy(model.join("config.json"), corrupt.join("config.json")).unwrap();
+    std::fs::write(corrupt.join("model.safetensors"), b"not tensors at all").unwrap();
+    expect_error(run(&corrupt, "bedroom_rect.json"), "model.safetensors: not a readable safetensors file");
+
+    // Weights of a different shape (the config says d_model 48).
+    let text =
+        std::fs::read_to_string(model.join("config.json")).unwrap().replace("\"d_model\": 32", "\"d_model\": 48");
+    std::fs::write(corrupt.join("config.json"), text).unwrap();
+    std::fs::copy(model.join("model.safetensors"), corrupt.join("model.safetensors")).unwrap();
+    expect_error(run(&corrupt, "bedroom_rect.json"), "model.safetensors: ");
+
+    std::fs::write(corrupt.join("config.json"), "{ \"format\": ").unwrap();
+    expect_error(run(&corrupt, "bedroom_rect.json"), "config.json: not a model config");
+    expect_error(run(&dir.path().join("missing"), "bedroom_rect.json"), "config.json");
+}
+
+#[test]
+fn every_room_type_has_a_shipped_model_and_the_demo_runs_on_it() {
+    assert_eq!(shipped_rooms(), RoomType::ALL.to_vec());
+    let dir = tempfile::tempdir().unwrap();
+    let inputs = dir.path().join("inputs");
+    std::fs::create_dir(&inputs).unwrap();
+    for name in ["bedroom_rect.json", "dining_l.json"] {
+        std::fs::copy(root().join("scenes/examples").join(name), inputs.join(name)).unwrap();
+    }
+    let out = dir.path().join("demo");
+    let o = shade_sim(&["demo", "--inputs", inputs.to_str().unwrap(), "--out", out.to_str().unwrap(), "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let rows = summary["scenes"].as_array().unwrap();
+    assert_eq!(rows.len(), 2);
+    for (row, stem) in rows.iter().zip(["bedroom_rect_0", "dining_l_0"]) {
+        assert_eq!(row["scene"], stem);
+        assert!(row["objects"].as_u64().unwrap() > 0, "{row}");
+        assert!(row["violations"].is_u64());
+        let scene = Scene::load(out.join(format!("{stem}.json"))).unwrap();
+        assert_eq!(scene.objects.len() as u64, row["objects"].as_u64().unwrap());
+        assert!(std::fs::read_to_string(out.join(format!("{stem}.xml"))).unwrap().starts_with("<mujoco"));
+        assert!(std::fs::read(out.join(format!("{stem}.png"))).unwrap().starts_with(b"\x89PNG"));
+    }
+}
