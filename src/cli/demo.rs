@@ -29,6 +29,8 @@ pub struct DemoArgs {
     /// Seed.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
+    #[command(flatten)]
+    pub guidance: super::generate::GuidanceArgs,
 }
 
 pub fn run(args: &DemoArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
@@ -37,6 +39,7 @@ pub fn run(args: &DemoArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     let files = super::generate::scene_files(&args.inputs)?;
     anyhow::ensure!(!files.is_empty(), "{}: no scene files", args.inputs.display());
     let inputs: Vec<Scene> = files.iter().map(Scene::load).collect::<Result<_, _>>()?;
+    let guidance = args.guidance.config()?;
     std::fs::create_dir_all(&args.out).with_context(|| format!("{}: cannot create folder", args.out.display()))?;
 
     let bar = super::progress::bar(global, (inputs.len() * args.samples) as u64, "generate");
@@ -49,7 +52,8 @@ pub fn run(args: &DemoArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
         let generator = Generator::new(shipped_model(room)?);
         let batch: Vec<Scene> = which.iter().map(|&i| inputs[i].clone()).collect();
         let before = bar.position();
-        let out = generator.generate_with(&batch, args.samples, args.seed, &mut |_| None, &mut |done| {
+        let mut factory = super::generate::guidance_factory(&generator, guidance.clone());
+        let out = generator.generate_with(&batch, args.samples, args.seed, &mut factory, &mut |done| {
             bar.set_position(before + done as u64)
         })?;
         for (&i, scenes) in which.iter().zip(out) {

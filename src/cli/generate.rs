@@ -6,7 +6,9 @@ use super::scene_rows::{SceneRow, table};
 use super::{ExitStatus, GlobalArgs};
 use anyhow::Context;
 use clap::Args;
-use shade_sim::generator::{Checkpoint, Generator, shipped_model};
+use shade_sim::generator::{
+    Checkpoint, Generator, Guidance, GuidanceConfig, GuidanceFactory, SpatialGuidance, shipped_model,
+};
 use shade_sim::scene::{RoomType, Scene};
 use std::path::{Path, PathBuf};
 
@@ -27,6 +29,39 @@ pub struct GenerateArgs {
     /// Model folder (config.json + model.safetensors); default: the shipped model of the input's room type.
     #[arg(long)]
     pub model: Option<PathBuf>,
+    #[command(flatten)]
+    pub guidance: GuidanceArgs,
+}
+
+/// Collision guidance flags (shared with `demo`).
+#[derive(Debug, Clone, Args)]
+pub struct GuidanceArgs {
+    /// Guidance terms: none, all, or a list of mot, bound, obj.
+    #[arg(long, default_value = "all")]
+    pub guidance: String,
+    /// Step size γ of the guidance (default: the tuned value in docs/RESULTS.md).
+    #[arg(long)]
+    pub guidance_scale: Option<f64>,
+}
+
+impl GuidanceArgs {
+    /// The configuration these flags ask for.
+    pub fn config(&self) -> anyhow::Result<GuidanceConfig> {
+        let mut cfg = GuidanceConfig::parse(&self.guidance).map_err(|e| anyhow::anyhow!("--guidance: {e}"))?;
+        if let Some(scale) = self.guidance_scale {
+            anyhow::ensure!(scale.is_finite() && scale >= 0.0, "--guidance-scale: must be a non-negative number");
+            cfg.scale = scale;
+        }
+        Ok(cfg)
+    }
+}
+
+/// The per-batch guidance factory of `cfg` for `generator`'s model.
+pub fn guidance_factory(generator: &Generator, cfg: GuidanceConfig) -> Box<GuidanceFactory> {
+    let meta = generator.checkpoint.meta.clone();
+    Box::new(move |scenes: &[&Scene]| -> Option<Box<dyn Guidance>> {
+        cfg.is_active().then(|| Box::new(SpatialGuidance::new(cfg.clone(), &meta.model, &meta.bounds, scenes)) as _)
+    })
 }
 
 /// The model in `dir`, or the shipped one for `room`; fails when its room type differs.
@@ -54,10 +89,12 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
             files[0].display()
         );
     }
+    let guidance = args.guidance.config()?;
     let generator = load_model(args.model.as_deref(), room, &files[0])?;
     let bar = super::progress::bar(global, (inputs.len() * args.samples) as u64, "generate");
+    let mut factory = guidance_factory(&generator, guidance);
     let scenes = generator
-        .generate_with(&inputs, args.samples, args.seed, &mut |_| None, &mut |done| bar.set_position(done as u64))?;
+        .generate_with(&inputs, args.samples, args.seed, &mut factory, &mut |done| bar.set_position(done as u64))?;
     bar.finish_and_clear();
     std::fs::create_dir_all(&args.out).with_context(|| format!("{}: cannot create folder", args.out.display()))?;
     let mut rows = Vec::new();

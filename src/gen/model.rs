@@ -287,6 +287,12 @@ mod tests {
         Denoiser::new(&ModelConfig::tiny(RoomType::Living), &mut living).unwrap();
         let tensors = living.snapshot().unwrap().into_iter().collect();
         let err = Denoiser::new(&cfg, &mut Params::loaded(tensors)).unwrap_err().to_string();
+        // Loaded weights are frozen: inference records no graph (that would hold all 200 steps).
+        let bedroom = a.snapshot().unwrap().into_iter().collect();
+        let frozen = Denoiser::new(&cfg, &mut Params::loaded(bedroom)).unwrap();
+        let x = random(&[1, cfg.slots(), cfg.token_dim()], 4);
+        assert!(!frozen.forward(&x, &[3], &cond(&cfg, 1, 1)).unwrap().track_op());
+        assert!(Denoiser::new(&cfg, &mut a).is_err(), "a second model from the same parameters redefines them");
         assert!(err.contains("input.weight has shape [32, 33], the model needs [32, 30]"), "{err}");
     }
 }

@@ -20,10 +20,12 @@ pub enum Init {
     Normal(f64),
 }
 
-/// The parameters of one model, by name, in a deterministic order.
+/// The parameters of one model, by name, in a deterministic order. Fresh parameters are trainable
+/// variables; loaded ones are plain tensors, so inference records no computation graph.
 #[derive(Debug)]
 pub struct Params {
     vars: BTreeMap<String, Var>,
+    frozen: BTreeMap<String, Tensor>,
     source: Source,
 }
 
@@ -36,17 +38,20 @@ enum Source {
 impl Params {
     /// Fresh parameters drawn from `seed`.
     pub fn random(seed: u64) -> Params {
-        Params { vars: BTreeMap::new(), source: Source::Random(Rng::new(seed)) }
+        Params { vars: BTreeMap::new(), frozen: BTreeMap::new(), source: Source::Random(Rng::new(seed)) }
     }
 
-    /// Parameters taken from `tensors` (a checkpoint); shapes are checked as the model asks.
+    /// Frozen parameters taken from `tensors` (a checkpoint); shapes are checked as the model asks.
     pub fn loaded(tensors: HashMap<String, Tensor>) -> Params {
-        Params { vars: BTreeMap::new(), source: Source::Loaded(tensors) }
+        Params { vars: BTreeMap::new(), frozen: BTreeMap::new(), source: Source::Loaded(tensors) }
     }
 
     /// The parameter `name` of `shape`: drawn with `init`, or taken from the loaded tensors.
     pub fn get(&mut self, name: &str, shape: &[usize], init: Init) -> Result<Tensor, GenError> {
-        let tensor = match &mut self.source {
+        if self.vars.contains_key(name) || self.frozen.contains_key(name) {
+            return Err(mismatch(format!("parameter {name} defined twice")));
+        }
+        match &mut self.source {
             Source::Random(rng) => {
                 let n: usize = shape.iter().product();
                 let values: Vec<f32> = match init {
@@ -57,22 +62,21 @@ impl Params {
                     Init::Zeros => vec![0.0; n],
                     Init::Normal(std) => (0..n).map(|_| (rng.normal() * std) as f32).collect(),
                 };
-                Tensor::from_vec(values, shape, &Device::Cpu)?
+                let var = Var::from_vec(values, shape, &Device::Cpu)?;
+                let out = var.as_tensor().clone();
+                self.vars.insert(name.to_string(), var);
+                Ok(out)
             }
             Source::Loaded(map) => {
                 let t = map.remove(name).ok_or_else(|| missing(name))?;
                 if t.dims() != shape {
                     return Err(mismatch(format!("{name} has shape {:?}, the model needs {shape:?}", t.dims())));
                 }
-                t.to_dtype(DType::F32)?
+                let t = t.to_dtype(DType::F32)?.detach();
+                self.frozen.insert(name.to_string(), t.clone());
+                Ok(t)
             }
-        };
-        let var = Var::from_tensor(&tensor)?;
-        let out = var.as_tensor().clone();
-        if self.vars.insert(name.to_string(), var).is_some() {
-            return Err(mismatch(format!("parameter {name} defined twice")));
         }
-        Ok(out)
     }
 
     /// A linear layer `name.{weight,bias}` from `input` to `output` features.
@@ -93,19 +97,22 @@ impl Params {
         Ok(())
     }
 
-    /// All parameters by name.
+    /// The trainable parameters by name (empty for loaded ones).
     pub fn vars(&self) -> &BTreeMap<String, Var> {
         &self.vars
     }
 
     /// Number of scalar parameters.
     pub fn count(&self) -> usize {
-        self.vars.values().map(|v| v.elem_count()).sum()
+        self.vars.values().map(|v| v.elem_count()).sum::<usize>()
+            + self.frozen.values().map(|t| t.elem_count()).sum::<usize>()
     }
 
     /// Copies of the current values by name (for EMA and saving).
     pub fn snapshot(&self) -> Result<BTreeMap<String, Tensor>, GenError> {
-        self.vars.iter().map(|(k, v)| Ok((k.clone(), v.as_tensor().copy()?))).collect()
+        let vars = self.vars.iter().map(|(k, v)| Ok((k.clone(), v.as_tensor().copy()?)));
+        let frozen = self.frozen.iter().map(|(k, t)| Ok((k.clone(), t.copy()?)));
+        vars.chain(frozen).collect()
     }
 }
 

@@ -38,7 +38,8 @@ pub fn sample(
     };
     let mut x = gaussian(&mut rngs)?;
     for t in (0..schedule.steps()).rev() {
-        let eps = model.forward(&x, &vec![t; b], cond)?;
+        // Detached so that nothing (a trainable model, a guidance gradient) chains the steps' graphs.
+        let eps = model.forward(&x, &vec![t; b], cond)?.detach();
         let ab = schedule.alpha_bars[t];
         let x0 = ((&x - (eps * (1.0 - ab).sqrt())?)? / ab.sqrt())?.clamp(-1f32, 1f32)?;
         let x0 = match guidance.as_deref_mut() {
@@ -47,7 +48,7 @@ pub fn sample(
         };
         let (c0, ct, var) = schedule.posterior(t);
         let mean = ((x0 * c0)? + (&x * ct)?)?;
-        x = if t > 0 { (mean + (gaussian(&mut rngs)? * var.sqrt())?)? } else { mean };
+        x = if t > 0 { (mean + (gaussian(&mut rngs)? * var.sqrt())?)? } else { mean }.detach();
     }
     Ok(x.flatten_all()?.to_vec1::<f32>()?)
 }

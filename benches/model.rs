@@ -1,0 +1,133 @@
+//! Speed of the SHADE denoiser (the shipped `small` bedroom configuration, random weights) against
+//! the same architecture in PyTorch on the CPU (benches/reference/dit_reference.py):
+//! 200-step DDPM sampling of a batch of 16 bedrooms, and one training step (forward, backward,
+//! AdamW) at the training batch of 32. Ratios (PyTorch time / ours; > 1 means we are faster) are
+//! printed at the end of the run when the reference is installed.
+//!
+//! Run: `bash benches/reference/setup.sh` once, then `cargo bench --bench model`.
+
+use candle_core::{DType, Device, Tensor};
+use criterion::{Criterion, criterion_group};
+use shade_sim::data::Rng;
+use shade_sim::generator::{AdamW, AdamWConfig, CondTensors, Denoiser, ModelConfig, Params, Schedule, sample};
+use shade_sim::scene::RoomType;
+use std::hint::black_box;
+use std::path::Path;
+use std::time::Instant;
+
+const SAMPLE_BATCH: usize = 16;
+const TRAIN_BATCH: usize = 32;
+
+fn random(shape: &[usize], rng: &mut Rng) -> Tensor {
+    let n = shape.iter().product();
+    Tensor::from_vec((0..n).map(|_| rng.normal() as f32).collect::<Vec<_>>(), shape, &Device::Cpu).unwrap()
+}
+
+/// Random conditions like the reference's: 3 of 8 contact boxes real.
+fn conditions(cfg: &ModelConfig, b: usize, rng: &mut Rng) -> CondTensors {
+    let k = cfg.max_contacts;
+    let mask: Vec<f32> = (0..b * k).map(|i| if i % k < 3 { 1.0 } else { 0.0 }).collect();
+    CondTensors {
+        contacts: random(&[b, k, 11], rng),
+        contact_mask: Tensor::from_vec(mask, (b, k), &Device::Cpu).unwrap(),
+        floor: random(&[b, cfg.floor_points, 4], rng),
+        free: random(&[b, cfg.free_points, 3], rng),
+    }
+}
+
+struct Setup {
+    cfg: ModelConfig,
+    model: Denoiser,
+    params: Params,
+    schedule: Schedule,
+}
+
+fn setup() -> Setup {
+    shade_sim::tune_allocator_for_tensors();
+    let cfg = ModelConfig::small(RoomType::Bedroom);
+    let mut params = Params::random(0);
+    let model = Denoiser::new(&cfg, &mut params).unwrap();
+    Setup { schedule: Schedule::linear(cfg.diffusion_steps), cfg, model, params }
+}
+
+fn sample_once(s: &Setup, rng: &mut Rng) {
+    let cond = conditions(&s.cfg, SAMPLE_BATCH, rng);
+    let seeds: Vec<u64> = (0..SAMPLE_BATCH as u64).collect();
+    black_box(sample(&s.model, &s.schedule, &cond, &seeds, None).unwrap());
+}
+
+fn train_once(s: &Setup, adam: &mut AdamW, rng: &mut Rng) {
+    let shape = [TRAIN_BATCH, s.cfg.slots(), s.cfg.token_dim()];
+    let (x0, noise) = (random(&shape, rng), random(&shape, rng));
+    let t: Vec<usize> = (0..TRAIN_BATCH).map(|_| rng.index(200)).collect();
+    let pred = s.model.forward(&(&x0 + &noise).unwrap(), &t, &conditions(&s.cfg, TRAIN_BATCH, rng)).unwrap();
+    let loss = (pred - noise).unwrap().sqr().unwrap().mean_all().unwrap();
+    adam.step(&loss.backward().unwrap(), 3e-4).unwrap();
+}
+
+fn bench(c: &mut Criterion) {
+    let s = setup();
+    let mut rng = Rng::new(1);
+    let mut adam = AdamW::new(s.params.vars(), AdamWConfig::default()).unwrap();
+    c.bench_function("sample 16 bedrooms, 200 steps", |b| b.iter(|| sample_once(&s, &mut rng)));
+    c.bench_function("train step, batch 32", |b| b.iter(|| train_once(&s, &mut adam, &mut rng)));
+}
+
+fn median(runs: usize, mut f: impl FnMut()) -> f64 {
+    f();
+    let mut t: Vec<f64> = (0..runs)
+        .map(|_| {
+            let start = Instant::now();
+            f();
+            start.elapsed().as_secs_f64()
+        })
+        .collect();
+    t.sort_by(f64::total_cmp);
+    t[runs / 2]
+}
+
+fn ratios() {
+    let s = setup();
+    let mut rng = Rng::new(2);
+    let mut adam = AdamW::new(s.params.vars(), AdamWConfig::default()).unwrap();
+    let sampling = median(5, || sample_once(&s, &mut rng));
+    let step = median(5, || (0..10).for_each(|_| train_once(&s, &mut adam, &mut rng))) / 10.0;
+    println!("ours: {} parameters, DType {:?}", s.params.count(), DType::F32);
+    println!("ours: sample 16 × 200 steps {:.3} s, train step (batch 32) {:.1} ms", sampling, step * 1e3);
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("benches/reference");
+    let python = root.join(".venv/bin/python");
+    if !python.exists() {
+        println!("reference not installed: run `bash benches/reference/setup.sh` for the PyTorch ratios");
+        return;
+    }
+    let threads = std::thread::available_parallelism().map_or(2, |n| n.get()).to_string();
+    let out = std::process::Command::new(&python)
+        .arg(root.join("dit_reference.py"))
+        .args(["--threads", &threads])
+        .output()
+        .expect("the reference runs");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let r: serde_json::Value = serde_json::from_slice(out.stdout.trim_ascii()).expect("one JSON line");
+    let (ref_sample, ref_step) = (r["sample_seconds"].as_f64().unwrap(), r["train_step_seconds"].as_f64().unwrap());
+    println!(
+        "PyTorch {} ({} parameters, {threads} threads): sample {:.3} s, train step {:.1} ms",
+        r["torch"],
+        r["parameters"],
+        ref_sample,
+        ref_step * 1e3
+    );
+    println!("ratio: sampling PyTorch / ours = {:.2} (≥ 1: ours faster)", ref_sample / sampling);
+    println!("ratio: training steps per second ours / PyTorch = {:.2}", ref_step / step);
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default().sample_size(10).measurement_time(std::time::Duration::from_secs(10));
+    targets = bench
+}
+
+fn main() {
+    benches();
+    ratios();
+    Criterion::default().configure_from_args().final_summary();
+}
