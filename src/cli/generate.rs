@@ -6,9 +6,7 @@ use super::scene_rows::{SceneRow, table};
 use super::{ExitStatus, GlobalArgs};
 use anyhow::Context;
 use clap::Args;
-use shade_sim::generator::{
-    Checkpoint, Generator, Guidance, GuidanceConfig, GuidanceFactory, SpatialGuidance, shipped_model,
-};
+use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig, GuidanceFactory, shipped_model};
 use shade_sim::scene::{RoomType, Scene};
 use std::path::{Path, PathBuf};
 
@@ -36,7 +34,7 @@ pub struct GenerateArgs {
 /// Collision guidance flags (shared with `demo`).
 #[derive(Debug, Clone, Args)]
 pub struct GuidanceArgs {
-    /// Guidance terms: none, all, or a list of mot, bound, obj.
+    /// Guidance terms: none, all, or a list of mot, bound, obj, phys (physics feedback in the last steps).
     #[arg(long, default_value = "all")]
     pub guidance: String,
     /// Step size γ of the guidance (default: the tuned value in docs/RESULTS.md).
@@ -59,9 +57,7 @@ impl GuidanceArgs {
 /// The per-batch guidance factory of `cfg` for `generator`'s model.
 pub fn guidance_factory(generator: &Generator, cfg: GuidanceConfig) -> Box<GuidanceFactory> {
     let meta = generator.checkpoint.meta.clone();
-    Box::new(move |scenes: &[&Scene]| -> Option<Box<dyn Guidance>> {
-        cfg.is_active().then(|| Box::new(SpatialGuidance::new(cfg.clone(), &meta.model, &meta.bounds, scenes)) as _)
-    })
+    Box::new(move |scenes: &[&Scene]| cfg.for_batch(&meta.model, &meta.bounds, scenes))
 }
 
 /// The model in `dir`, or the shipped one for `room`; fails when its room type differs.

@@ -39,13 +39,34 @@ pub struct GuidanceConfig {
     pub scale: f64,
     /// Guide only at steps t < `until_step` (steps count down from T − 1 to 0).
     pub until_step: usize,
+    /// Weight of the physics-feedback displacements (J_phys; 0 = off).
+    #[serde(default)]
+    pub phys: f64,
+    /// Physics feedback only at steps t < `phys_until`…
+    #[serde(default)]
+    pub phys_until: usize,
+    /// …that are multiples of `phys_every`.
+    #[serde(default)]
+    pub phys_every: usize,
 }
 
 impl GuidanceConfig {
     /// All three spatial terms with the default weights.
     pub fn all() -> GuidanceConfig {
-        GuidanceConfig { motion: 1.0, bound: 1.0, object: 1.0, scale: 0.05, until_step: 100 }
+        GuidanceConfig {
+            motion: 1.0,
+            bound: 1.0,
+            object: 1.0,
+            scale: 0.05,
+            until_step: 100,
+            phys: 0.0,
+            phys_until: 20,
+            phys_every: 4,
+        }
     }
+
+    /// The weight `phys` takes when the term is asked for.
+    pub const PHYS_WEIGHT: f64 = 1.0;
 
     /// Only the named terms (`mot`, `bound`, `obj`, `all`, `none`), comma-separated.
     pub fn parse(list: &str) -> Result<GuidanceConfig, String> {
@@ -58,15 +79,34 @@ impl GuidanceConfig {
                 "mot" | "motion" => cfg.motion = full.motion,
                 "bound" => cfg.bound = full.bound,
                 "obj" | "object" => cfg.object = full.object,
-                other => return Err(format!("unknown guidance term {other:?} (none, all, mot, bound, obj)")),
+                "phys" => cfg.phys = Self::PHYS_WEIGHT,
+                other => return Err(format!("unknown guidance term {other:?} (none, all, mot, bound, obj, phys)")),
             }
         }
         Ok(cfg)
     }
 
-    /// Whether any term is on.
+    /// Whether any spatial term (J_m, J_b, J_o) is on.
     pub fn is_active(&self) -> bool {
         self.scale > 0.0 && (self.motion > 0.0 || self.bound > 0.0 || self.object > 0.0)
+    }
+
+    /// The guidance of one batch of `scenes`: the spatial terms, then the physics feedback; `None`
+    /// when everything is off.
+    pub fn for_batch(&self, model: &ModelConfig, bounds: &Bounds, scenes: &[&Scene]) -> Option<Box<dyn Guidance>> {
+        let mut chain: Vec<Box<dyn Guidance>> = Vec::new();
+        if self.is_active() {
+            chain.push(Box::new(SpatialGuidance::new(self.clone(), model, bounds, scenes)));
+        }
+        if self.phys > 0.0 {
+            let phys = super::PhysicsGuidance::new(model, bounds, scenes, self.phys, self.phys_until, self.phys_every);
+            chain.push(Box::new(phys));
+        }
+        match chain.len() {
+            0 => None,
+            1 => chain.pop(),
+            _ => Some(Box::new(super::phys_guidance::Chain(chain))),
+        }
     }
 }
 
@@ -437,6 +477,9 @@ mod tests {
         assert!(!GuidanceConfig::parse("none").unwrap().is_active());
         assert!(GuidanceConfig::parse("all").unwrap().is_active());
         assert!(GuidanceConfig::parse("walls").unwrap_err().contains("walls"));
+        let p = GuidanceConfig::parse("all,phys").unwrap();
+        assert!(p.is_active() && p.phys > 0.0);
+        assert!(!GuidanceConfig::parse("phys").unwrap().is_active());
     }
 }
 

@@ -119,10 +119,21 @@ pub fn encode(scene: &Scene, window_center: DVec2, bounds: &Bounds, cfg: &ModelC
 /// The objects of generated tokens (slots × token_dim): one per slot whose largest class is not
 /// "empty", ids `o0`, `o1`, … in slot order.
 pub fn decode(tokens: &[f32], window_center: DVec2, ceiling: f64, bounds: &Bounds, cfg: &ModelConfig) -> Vec<Object> {
+    decode_slots(tokens, window_center, ceiling, bounds, cfg).into_iter().map(|(_, o)| o).collect()
+}
+
+/// Like [`decode`], with each object's slot index.
+pub fn decode_slots(
+    tokens: &[f32],
+    window_center: DVec2,
+    ceiling: f64,
+    bounds: &Bounds,
+    cfg: &ModelConfig,
+) -> Vec<(usize, Object)> {
     let dim = cfg.token_dim();
     let categories = cfg.room_type.categories();
     let mut objects = Vec::new();
-    for t in tokens.chunks_exact(dim) {
+    for (slot, t) in tokens.chunks_exact(dim).enumerate() {
         let class = (0..cfg.classes())
             .max_by(|&a, &b| t[CLASS_OFFSET + a].total_cmp(&t[CLASS_OFFSET + b]))
             .expect("at least one class");
@@ -132,13 +143,14 @@ pub fn decode(tokens: &[f32], window_center: DVec2, ceiling: f64, bounds: &Bound
         let size = bounds.unscale_size([v(3), v(4), v(5)]).map(|s| s.max(0.02));
         let z = if category.is_hanging() { ceiling - size[2] * 0.5 } else { size[2] * 0.5 };
         let yaw = (t[7] as f64).atan2(t[6] as f64);
-        objects.push(Object {
+        let object = Object {
             id: format!("o{}", objects.len()),
             category,
             center: [c[0] + window_center.x, c[1] + window_center.y, z],
             size,
             yaw: if yaw.is_finite() { yaw } else { 0.0 },
-        });
+        };
+        objects.push((slot, object));
     }
     objects
 }

@@ -30,6 +30,37 @@ pub struct EngineContact {
 /// Replays every human of `scene` in a Rapier world and returns the contacts deeper than
 /// `tolerance`, frame by frame.
 pub fn rapier_replay(scene: &Scene, tolerance: f64) -> Vec<EngineContact> {
+    let mut out = Vec::new();
+    replay(scene, tolerance, |contact, _| out.push(contact));
+    sort_contacts(&mut out);
+    out
+}
+
+/// For every object a human penetrates deeper than `tolerance` in the Rapier replay: a horizontal
+/// push (m) as long as its deepest contact, in the direction of the depth-weighted sum of the
+/// directions from each penetrating bone to the object's centre. (Contact normals flip as a walker
+/// passes through an object and cancel out; the direction to the centre keeps the side the object
+/// is on.) Walls are left out: they do not move.
+pub fn rapier_pushes(scene: &Scene, tolerance: f64) -> Vec<(usize, glam::DVec2)> {
+    let mut sums: HashMap<usize, (glam::DVec2, f64)> = HashMap::new();
+    replay(scene, tolerance, |contact, bone_middle| {
+        if let Owner::Object(i) = contact.owner {
+            let c = scene.objects[i].center;
+            let away = glam::DVec2::new(c[0] - bone_middle.x as f64, c[1] - bone_middle.y as f64);
+            let e = sums.entry(i).or_insert((glam::DVec2::ZERO, 0.0));
+            e.0 += away.normalize_or_zero() * contact.depth;
+            e.1 = e.1.max(contact.depth);
+        }
+    });
+    let mut out: Vec<(usize, glam::DVec2)> =
+        sums.into_iter().map(|(i, (sum, deepest))| (i, sum.normalize_or_zero() * deepest)).collect();
+    out.sort_by_key(|(i, _)| *i);
+    out
+}
+
+/// The replay: calls `found(contact, bone_middle)` for every bone–solid contact deeper than
+/// `tolerance`.
+fn replay(scene: &Scene, tolerance: f64, mut found: impl FnMut(EngineContact, Vec3)) {
     let mut world = PhysicsWorld::default();
     let mut owners: HashMap<ColliderHandle, Owner> = HashMap::new();
     for solid in furniture_solids(scene).into_iter().chain(wall_solids(scene)) {
@@ -53,7 +84,6 @@ pub fn rapier_replay(scene: &Scene, tolerance: f64) -> Vec<EngineContact> {
         bodies.push(handles);
     }
     let frames = scene.humans.iter().map(|h| h.frames.len()).max().unwrap_or(0);
-    let mut out = Vec::new();
     for f in 0..frames {
         for (hi, human) in scene.humans.iter().enumerate() {
             let frame = f.min(human.frames.len() - 1);
@@ -79,13 +109,12 @@ pub fn rapier_replay(scene: &Scene, tolerance: f64) -> Vec<EngineContact> {
                 let depth = -contact.dist as f64;
                 let human = &scene.humans[bone.0];
                 if depth > tolerance && f < human.frames.len() {
-                    out.push(EngineContact { human: bone.0, bone: bone.1, owner, frame: f, depth });
+                    let middle = world.bodies[bodies[bone.0][bone.1]].translation();
+                    found(EngineContact { human: bone.0, bone: bone.1, owner, frame: f, depth }, middle);
                 }
             }
         }
     }
-    sort_contacts(&mut out);
-    out
 }
 
 /// The same contacts computed exactly (parry's capsule–box contact on every bone, solid and frame):
