@@ -1,19 +1,24 @@
 #!/usr/bin/env bash
-# The model card's test-split metrics: one sample per test input with the shipped models (embedded
-# in the binary) and `shade-sim eval` against the calibrated dataset.
-# Usage: bash scripts/eval_models.sh [DATA_DIR] [OUT_DIR] [extra generate flags…]
+# The model card's test-split metrics: one sample per test input (seed 0) with the shipped models
+# (embedded in the binary), unguided and with the default guidance, and `shade-sim eval` (with
+# physics) against the calibrated dataset.
+# Usage: bash scripts/eval_models.sh [DATA_DIR] [OUT_DIR] [ROOMS…]   (defaults: data out/eval, all rooms)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 data="${1:-data}"
 out="${2:-out/eval}"
-shift 2 || true
+rooms=("${@:3}")
+[ ${#rooms[@]} -eq 0 ] && rooms=(bedroom living dining)
 cargo build --release --quiet
 bin=./target/release/shade-sim
-for room in bedroom living dining; do
-    rm -rf "$out/$room"
-    start=$(date +%s.%N)
-    $bin --no-progress -q generate --input "$data/$room/test" --out "$out/$room" --seed 0 "$@"
-    end=$(date +%s.%N)
-    printf '%s: generated %d scenes in %.1f s\n' "$room" "$(ls "$out/$room" | wc -l)" "$(echo "$end - $start" | bc)"
-    $bin --no-progress eval --pred "$out/$room" --ref "$data/$room" --out "$out/$room.json"
+for room in "${rooms[@]}"; do
+    for guidance in none all; do
+        rm -rf "$out/$room/$guidance"
+        start=$(date +%s.%N)
+        $bin --no-progress -q generate --input "$data/$room/test" --out "$out/$room/$guidance" --seed 0 --guidance "$guidance"
+        printf '%s %-4s: %d scenes in %.1f s\n' "$room" "$guidance" "$(ls "$out/$room/$guidance" | wc -l)" \
+            "$(echo "$(date +%s.%N) - $start" | bc)" >&2
+    done
+    echo "## $room"
+    $bin --no-progress eval --pred "$out/$room/none" "$out/$room/all" --ref "$data/$room" --out "$out/$room.json"
 done

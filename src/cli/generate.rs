@@ -40,12 +40,22 @@ pub struct GuidanceArgs {
     /// Step size γ of the guidance (default: the tuned value in docs/RESULTS.md).
     #[arg(long)]
     pub guidance_scale: Option<f64>,
+    /// A JSON file with every guidance setting (per-term weights, γ, step windows); --guidance is
+    /// then ignored and --guidance-scale still applies.
+    #[arg(long)]
+    pub guidance_config: Option<PathBuf>,
 }
 
 impl GuidanceArgs {
     /// The configuration these flags ask for.
     pub fn config(&self) -> anyhow::Result<GuidanceConfig> {
-        let mut cfg = GuidanceConfig::parse(&self.guidance).map_err(|e| anyhow::anyhow!("--guidance: {e}"))?;
+        let mut cfg = match &self.guidance_config {
+            Some(file) => {
+                let text = std::fs::read_to_string(file).with_context(|| format!("{}: cannot read", file.display()))?;
+                serde_json::from_str(&text).with_context(|| format!("{}: not a guidance config", file.display()))?
+            }
+            None => GuidanceConfig::parse(&self.guidance).map_err(|e| anyhow::anyhow!("--guidance: {e}"))?,
+        };
         if let Some(scale) = self.guidance_scale {
             anyhow::ensure!(scale.is_finite() && scale >= 0.0, "--guidance-scale: must be a non-negative number");
             cfg.scale = scale;

@@ -23,6 +23,7 @@ use crate::human::Conditions;
 use crate::scene::{Category, Scene};
 use candle_core::Tensor;
 use glam::{DVec2, DVec3};
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 /// Weights of the terms and the step.
@@ -51,13 +52,13 @@ pub struct GuidanceConfig {
 }
 
 impl GuidanceConfig {
-    /// All three spatial terms with the default weights.
+    /// All three spatial terms with the default weights (γ 0.1 from the sweep in docs/RESULTS.md).
     pub fn all() -> GuidanceConfig {
         GuidanceConfig {
             motion: 1.0,
             bound: 1.0,
             object: 1.0,
-            scale: 0.05,
+            scale: 0.1,
             until_step: 100,
             phys: 0.0,
             phys_until: 20,
@@ -310,30 +311,33 @@ impl Guidance for SpatialGuidance {
         let dim = self.model.token_dim();
         let per_item = self.model.slots() * dim;
         let categories = self.model.room_type.categories();
-        let mut total = 0.0;
-        for (item, tokens) in v.chunks_exact_mut(per_item).enumerate() {
-            let masks = &self.masks[item];
-            let center = masks.window.center;
-            let mut slots = Vec::new();
-            let mut objects = Vec::new();
-            for (slot, t) in tokens.chunks_exact(dim).enumerate() {
-                let class = (0..self.model.classes())
-                    .max_by(|&a, &b| t[CLASS_OFFSET + a].total_cmp(&t[CLASS_OFFSET + b]))
-                    .expect("classes");
-                let Some(&category) = categories.get(class) else { continue };
-                slots.push(slot);
-                objects.push(guided(t, category, &self.bounds, center, self.ceilings[item]));
-            }
-            let (j, grads) = guidance_cost(&objects, masks, &self.cfg);
-            total += j;
-            for (&slot, g) in slots.iter().zip(&grads) {
-                let t = &mut tokens[slot * dim..(slot + 1) * dim];
-                let step = token_gradient(t, g, &self.bounds);
-                for (x, s) in t.iter_mut().zip(step) {
-                    *x = (*x - (self.cfg.scale * s) as f32).clamp(-1.0, 1.0);
+        let (model, bounds, cfg) = (&self.model, &self.bounds, &self.cfg);
+        let total: f64 = v
+            .par_chunks_exact_mut(per_item)
+            .zip(self.masks.par_iter().zip(&self.ceilings))
+            .map(|(tokens, (masks, &ceiling))| {
+                let center = masks.window.center;
+                let mut slots = Vec::new();
+                let mut objects = Vec::new();
+                for (slot, t) in tokens.chunks_exact(dim).enumerate() {
+                    let class = (0..model.classes())
+                        .max_by(|&a, &b| t[CLASS_OFFSET + a].total_cmp(&t[CLASS_OFFSET + b]))
+                        .expect("classes");
+                    let Some(&category) = categories.get(class) else { continue };
+                    slots.push(slot);
+                    objects.push(guided(t, category, bounds, center, ceiling));
                 }
-            }
-        }
+                let (j, grads) = guidance_cost(&objects, masks, cfg);
+                for (&slot, g) in slots.iter().zip(&grads) {
+                    let t = &mut tokens[slot * dim..(slot + 1) * dim];
+                    let step = token_gradient(t, g, bounds);
+                    for (x, s) in t.iter_mut().zip(step) {
+                        *x = (*x - (cfg.scale * s) as f32).clamp(-1.0, 1.0);
+                    }
+                }
+                j
+            })
+            .sum();
         tracing::debug!(step = t, j = total, "guidance");
         self.history.push((t, total));
         Ok(Tensor::from_vec(v, dims, x0.device())?)

@@ -190,6 +190,12 @@ fn bad_and_mismatched_checkpoints_give_one_error_line() {
     std::fs::copy(model.join("model.safetensors"), corrupt.join("model.safetensors")).unwrap();
     expect_error(run(&corrupt, "bedroom_rect.json"), "model.safetensors: ");
 
+    let bad_terms = shade_sim(&[
+        "generate", "--input", root().join("scenes/examples/bedroom_rect.json").to_str().unwrap(), "--out",
+        dir.path().join("o").to_str().unwrap(), "--model", model.to_str().unwrap(), "--guidance", "mot,walls",
+    ]);
+    expect_error(bad_terms, "--guidance: unknown guidance term \"walls\"");
+
     std::fs::write(corrupt.join("config.json"), "{ \"format\": ").unwrap();
     expect_error(run(&corrupt, "bedroom_rect.json"), "config.json: not a model config");
     expect_error(run(&dir.path().join("missing"), "bedroom_rect.json"), "config.json");
