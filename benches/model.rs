@@ -9,8 +9,12 @@
 use candle_core::{DType, Device, Tensor};
 use criterion::{Criterion, criterion_group};
 use shade_sim::data::Rng;
-use shade_sim::generator::{AdamW, AdamWConfig, CondTensors, Denoiser, ModelConfig, Params, Schedule, sample};
+use shade_sim::generator::{
+    AdamW, AdamWConfig, Bounds, CondTensors, Denoiser, Guidance, GuidanceConfig, ModelConfig, Params, Schedule,
+    SpatialGuidance, sample, tokens,
+};
 use shade_sim::scene::RoomType;
+use shade_sim::scene::Scene;
 use std::hint::black_box;
 use std::path::Path;
 use std::time::Instant;
@@ -65,12 +69,40 @@ fn train_once(s: &Setup, adam: &mut AdamW, rng: &mut Rng) {
     adam.step(&loss.backward().unwrap(), 3e-4).unwrap();
 }
 
+/// 16 procedural bedrooms and their tokens, jittered by 0.05 so objects overlap walls, paths and
+/// each other the way a denoiser's estimate does.
+fn guidance_batch(cfg: &ModelConfig) -> (Vec<Scene>, Bounds, Tensor) {
+    let scenes: Vec<Scene> = (0..SAMPLE_BATCH as u64)
+        .map(|i| shade_sim::data::generate_room(RoomType::Bedroom, 9, i, false).scene)
+        .collect();
+    let mut stats = shade_sim::data::SplitStats::default();
+    scenes.iter().for_each(|s| stats.add(s));
+    let bounds = Bounds::from_stats(&stats);
+    let mut rng = Rng::new(3);
+    let mut all = Vec::new();
+    for s in &scenes {
+        let window = shade_sim::geom::RoomWindow::for_room(s.room_type, &s.floor_plan.polygon());
+        let (t, _) = tokens::encode(s, window.center, &bounds, cfg);
+        all.extend(t.into_iter().map(|v| v + 0.05 * rng.normal() as f32));
+    }
+    let x0 = Tensor::from_vec(all, (SAMPLE_BATCH, cfg.slots(), cfg.token_dim()), &Device::Cpu).unwrap();
+    (scenes, bounds, x0)
+}
+
 fn bench(c: &mut Criterion) {
     let s = setup();
     let mut rng = Rng::new(1);
     let mut adam = AdamW::new(s.params.vars(), AdamWConfig::default()).unwrap();
     c.bench_function("sample 16 bedrooms, 200 steps", |b| b.iter(|| sample_once(&s, &mut rng)));
     c.bench_function("train step, batch 32", |b| b.iter(|| train_once(&s, &mut adam, &mut rng)));
+    let cond = conditions(&s.cfg, SAMPLE_BATCH, &mut rng);
+    let x = random(&[SAMPLE_BATCH, s.cfg.slots(), s.cfg.token_dim()], &mut rng);
+    let t = vec![50; SAMPLE_BATCH];
+    c.bench_function("denoiser forward, batch 16", |b| b.iter(|| black_box(s.model.forward(&x, &t, &cond).unwrap())));
+    let (scenes, bounds, x0) = guidance_batch(&s.cfg);
+    let refs: Vec<&Scene> = scenes.iter().collect();
+    let mut g = SpatialGuidance::new(GuidanceConfig::all(), &s.cfg, &bounds, &refs);
+    c.bench_function("guidance J_m + J_b + J_o, batch 16", |b| b.iter(|| black_box(g.guide(&x0, 0).unwrap())));
 }
 
 fn median(runs: usize, mut f: impl FnMut()) -> f64 {
@@ -93,6 +125,23 @@ fn ratios() {
     let sampling = median(5, || sample_once(&s, &mut rng));
     let step = median(5, || (0..10).for_each(|_| train_once(&s, &mut adam, &mut rng))) / 10.0;
     println!("ours: {} parameters, DType {:?}", s.params.count(), DType::F32);
+    let cond = conditions(&s.cfg, SAMPLE_BATCH, &mut rng);
+    let x = random(&[SAMPLE_BATCH, s.cfg.slots(), s.cfg.token_dim()], &mut rng);
+    let forward = median(21, || {
+        black_box(s.model.forward(&x, &[50; SAMPLE_BATCH], &cond).unwrap());
+    });
+    let (scenes, bounds, x0) = guidance_batch(&s.cfg);
+    let refs: Vec<&Scene> = scenes.iter().collect();
+    let mut g = SpatialGuidance::new(GuidanceConfig::all(), &s.cfg, &bounds, &refs);
+    let guide = median(21, || {
+        black_box(g.guide(&x0, 0).unwrap());
+    });
+    println!(
+        "ratio: guidance / denoiser per step (batch 16) = {:.3} ({:.2} ms vs {:.2} ms; target ≤ 0.10)",
+        guide / forward,
+        guide * 1e3,
+        forward * 1e3
+    );
     println!("ours: sample 16 × 200 steps {:.3} s, train step (batch 32) {:.1} ms", sampling, step * 1e3);
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("benches/reference");
     let python = root.join(".venv/bin/python");

@@ -8,6 +8,7 @@ use anyhow::Context;
 use clap::Args;
 use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig, GuidanceFactory, shipped_model};
 use shade_sim::scene::{RoomType, Scene};
+use shade_sim::sim::{CheckConfig, CheckReport, check_scene};
 use std::path::{Path, PathBuf};
 
 #[derive(Debug, Args)]
@@ -29,6 +30,13 @@ pub struct GenerateArgs {
     pub model: Option<PathBuf>,
     #[command(flatten)]
     pub guidance: GuidanceArgs,
+    /// Keep only layouts that pass `check`, resampling (new seeds) until each input has --samples
+    /// of them or --attempts rounds are spent; exit 1 if an input got none.
+    #[arg(long)]
+    pub require_clean: bool,
+    /// Sampling rounds for --require-clean.
+    #[arg(long, default_value_t = 8)]
+    pub attempts: usize,
 }
 
 /// Collision guidance flags (shared with `demo`).
@@ -99,25 +107,68 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
     let generator = load_model(args.model.as_deref(), room, &files[0])?;
     let bar = super::progress::bar(global, (inputs.len() * args.samples) as u64, "generate");
     let mut factory = guidance_factory(&generator, guidance);
-    let scenes = generator
-        .generate_with(&inputs, args.samples, args.seed, &mut factory, &mut |done| bar.set_position(done as u64))?;
+    let rounds = if args.require_clean { args.attempts.max(1) } else { 1 };
+    let check = CheckConfig::default();
+    let mut kept: Vec<Vec<(Scene, Option<CheckReport>)>> = vec![Vec::new(); inputs.len()];
+    let (mut sampled, mut accepted) = (0usize, 0usize);
+    for round in 0..rounds {
+        let wanted: Vec<usize> = (0..inputs.len()).filter(|&i| kept[i].len() < args.samples).collect();
+        if wanted.is_empty() {
+            break;
+        }
+        let batch: Vec<Scene> = wanted.iter().map(|&i| inputs[i].clone()).collect();
+        // Round 0 uses the seed itself, so a clean first sample is the same as without the flag.
+        let seed = args.seed.wrapping_add(round as u64 * 1_000_003);
+        let out = generator.generate_with(&batch, args.samples, seed, &mut factory, &mut |done| {
+            bar.set_position((accepted + done.min(args.samples * inputs.len())) as u64)
+        })?;
+        for (&i, scenes) in wanted.iter().zip(out) {
+            for scene in scenes {
+                sampled += 1;
+                if !args.require_clean {
+                    kept[i].push((scene, None));
+                    continue;
+                }
+                let report = check_scene(&scene, &check);
+                if report.is_clean() && kept[i].len() < args.samples {
+                    accepted += 1;
+                    kept[i].push((scene, Some(report)));
+                }
+            }
+        }
+    }
     bar.finish_and_clear();
     std::fs::create_dir_all(&args.out).with_context(|| format!("{}: cannot create folder", args.out.display()))?;
     let mut rows = Vec::new();
-    for (input, samples) in files.iter().zip(&scenes) {
+    for (input, samples) in files.iter().zip(&kept) {
         let stem = input.file_stem().map_or("scene".into(), |s| s.to_string_lossy().into_owned());
-        for (k, scene) in samples.iter().enumerate() {
+        for (k, (scene, report)) in samples.iter().enumerate() {
             let file = args.out.join(format!("{stem}_{k}.json"));
             scene.save(&file)?;
-            rows.push(SceneRow::of(&file.display().to_string(), scene, None));
+            rows.push(SceneRow::of(&file.display().to_string(), scene, report.as_ref()));
         }
     }
+    let empty = kept.iter().filter(|k| k.is_empty()).count();
+    let acceptance = args.require_clean.then(|| accepted as f64 / sampled.max(1) as f64);
     if global.json {
-        print_json(&serde_json::json!({ "input": args.input, "seed": args.seed, "scenes": rows }))?;
+        print_json(&serde_json::json!({
+            "input": args.input,
+            "seed": args.seed,
+            "scenes": rows,
+            "sampled": sampled,
+            "acceptance_rate": acceptance,
+            "inputs_without_clean_layout": args.require_clean.then_some(empty),
+        }))?;
     } else if global.quiet == 0 {
         print_text(&table(&rows))?;
+        if let Some(rate) = acceptance {
+            print_text(&format!(
+                "{accepted} of {sampled} sampled layouts passed the check (acceptance {:.1} %); {empty} inputs without one\n",
+                rate * 100.0
+            ))?;
+        }
     }
-    Ok(ExitStatus::Success)
+    Ok(if args.require_clean && empty > 0 { ExitStatus::Found } else { ExitStatus::Success })
 }
 
 /// The scene files (`*.json`) of a folder, sorted by name.

@@ -144,6 +144,31 @@ fn train_writes_a_checkpoint_and_generate_is_deterministic() {
     assert_eq!(a, b);
     assert_ne!(a, c);
     assert_ne!(a[0], a[1]);
+    // --require-clean: an (untrained) tiny model's layouts never pass the check; every round samples
+    // anew, nothing is written and the exit status is 1.
+    let strict = dir.path().join("strict");
+    let o = shade_sim(&[
+        "generate",
+        "--input",
+        input.to_str().unwrap(),
+        "--out",
+        strict.to_str().unwrap(),
+        "--samples",
+        "2",
+        "--model",
+        model.to_str().unwrap(),
+        "--require-clean",
+        "--attempts",
+        "3",
+        "--json",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(summary["sampled"], 6);
+    assert_eq!(summary["acceptance_rate"], 0.0);
+    assert_eq!(summary["inputs_without_clean_layout"], 1);
+    assert_eq!(std::fs::read_dir(&strict).unwrap().count(), 0);
+
     let original = Scene::load(&input).unwrap();
     let generated = Scene::load(dir.path().join("a/bedroom_rect_0.json")).unwrap();
     assert_eq!(generated.floor_plan, original.floor_plan);
@@ -191,8 +216,15 @@ fn bad_and_mismatched_checkpoints_give_one_error_line() {
     expect_error(run(&corrupt, "bedroom_rect.json"), "model.safetensors: ");
 
     let bad_terms = shade_sim(&[
-        "generate", "--input", root().join("scenes/examples/bedroom_rect.json").to_str().unwrap(), "--out",
-        dir.path().join("o").to_str().unwrap(), "--model", model.to_str().unwrap(), "--guidance", "mot,walls",
+        "generate",
+        "--input",
+        root().join("scenes/examples/bedroom_rect.json").to_str().unwrap(),
+        "--out",
+        dir.path().join("o").to_str().unwrap(),
+        "--model",
+        model.to_str().unwrap(),
+        "--guidance",
+        "mot,walls",
     ]);
     expect_error(bad_terms, "--guidance: unknown guidance term \"walls\"");
 
