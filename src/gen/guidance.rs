@@ -230,7 +230,7 @@ pub fn pairwise_iou(objects: &[GuidedObject]) -> (f64, Vec<ObjectGradient>) {
             }
             total += iou;
             for (me, other) in [(i, j), (j, i)] {
-                for k in 0..7 {
+                for (k, g) in grads[me].iter_mut().enumerate() {
                     let h = 1e-3;
                     let at = |delta: f64| {
                         let mut o = objects[me];
@@ -241,7 +241,7 @@ pub fn pairwise_iou(objects: &[GuidedObject]) -> (f64, Vec<ObjectGradient>) {
                         }
                         iou_3d(&o.obox(), &boxes[other])
                     };
-                    grads[me][k] += (at(h) - at(-h)) / (2.0 * h);
+                    *g += (at(h) - at(-h)) / (2.0 * h);
                 }
             }
         }
