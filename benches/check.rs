@@ -7,6 +7,9 @@
 //! Run: `cargo bench --bench check --features mujoco` (after `bash scripts/setup_mujoco.sh`)
 
 use criterion::{Criterion, criterion_group};
+
+mod common;
+use common::median;
 use glam::DVec2;
 use shade_sim::geom::Polyline;
 use shade_sim::human::{Body, Motion};
@@ -60,19 +63,6 @@ fn bench(c: &mut Criterion) {
     c.bench_function("replay/rapier_world", |b| b.iter(|| shade_sim::sim::rapier_replay(black_box(&s), 0.02)));
     #[cfg(feature = "mujoco")]
     c.bench_function("replay/mujoco", |b| b.iter(|| shade_sim::sim::mujoco_replay(black_box(&s), 0.02)));
-}
-
-/// Median seconds of `f` over `n` runs.
-fn median(n: usize, mut f: impl FnMut()) -> f64 {
-    let mut t: Vec<f64> = (0..n)
-        .map(|_| {
-            let start = std::time::Instant::now();
-            f();
-            start.elapsed().as_secs_f64()
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    t[n / 2]
 }
 
 /// Prints the ratios of the engine replays to our check, measured in the same run.

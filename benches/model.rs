@@ -8,6 +8,9 @@
 
 use candle_core::{DType, Device, Tensor};
 use criterion::{Criterion, criterion_group};
+
+mod common;
+use common::median;
 use shade_sim::data::Rng;
 use shade_sim::generator::{
     AdamW, AdamWConfig, Bounds, CondTensors, Denoiser, Guidance, GuidanceConfig, ModelConfig, Params, Schedule,
@@ -17,7 +20,6 @@ use shade_sim::scene::RoomType;
 use shade_sim::scene::Scene;
 use std::hint::black_box;
 use std::path::Path;
-use std::time::Instant;
 
 const SAMPLE_BATCH: usize = 16;
 const TRAIN_BATCH: usize = 32;
@@ -103,19 +105,6 @@ fn bench(c: &mut Criterion) {
     let refs: Vec<&Scene> = scenes.iter().collect();
     let mut g = SpatialGuidance::new(GuidanceConfig::all(), &s.cfg, &bounds, &refs);
     c.bench_function("guidance J_m + J_b + J_o, batch 16", |b| b.iter(|| black_box(g.guide(&x0, 0).unwrap())));
-}
-
-fn median(runs: usize, mut f: impl FnMut()) -> f64 {
-    f();
-    let mut t: Vec<f64> = (0..runs)
-        .map(|_| {
-            let start = Instant::now();
-            f();
-            start.elapsed().as_secs_f64()
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    t[runs / 2]
 }
 
 fn ratios() {

@@ -16,11 +16,11 @@
 //!
 //! Empty slots (largest class "empty") are left alone. The physics-feedback term lives elsewhere.
 
-use super::tokens::CLASS_OFFSET;
+use super::tokens::decode_slots;
 use super::{Bounds, GenError, Guidance, ModelConfig};
 use crate::geom::{Mask, OBox, RoomWindow, iou_3d};
 use crate::human::Conditions;
-use crate::scene::{Category, Scene};
+use crate::scene::{Object, Scene};
 use candle_core::Tensor;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -125,6 +125,16 @@ pub struct GuidedObject {
 }
 
 impl GuidedObject {
+    /// The guidance's view of a decoded object.
+    pub fn of(o: &Object) -> GuidedObject {
+        GuidedObject {
+            center: DVec3::from(o.center),
+            size: DVec3::from(o.size),
+            yaw: o.yaw,
+            hanging: o.category.is_hanging(),
+        }
+    }
+
     fn obox(&self) -> OBox {
         OBox::new(self.center, self.size, self.yaw)
     }
@@ -310,23 +320,14 @@ impl Guidance for SpatialGuidance {
         let mut v = x0.flatten_all()?.to_vec1::<f32>()?;
         let dim = self.model.token_dim();
         let per_item = self.model.slots() * dim;
-        let categories = self.model.room_type.categories();
         let (model, bounds, cfg) = (&self.model, &self.bounds, &self.cfg);
         let total: f64 = v
             .par_chunks_exact_mut(per_item)
             .zip(self.masks.par_iter().zip(&self.ceilings))
             .map(|(tokens, (masks, &ceiling))| {
-                let center = masks.window.center;
-                let mut slots = Vec::new();
-                let mut objects = Vec::new();
-                for (slot, t) in tokens.chunks_exact(dim).enumerate() {
-                    let class = (0..model.classes())
-                        .max_by(|&a, &b| t[CLASS_OFFSET + a].total_cmp(&t[CLASS_OFFSET + b]))
-                        .expect("classes");
-                    let Some(&category) = categories.get(class) else { continue };
-                    slots.push(slot);
-                    objects.push(guided(t, category, bounds, center, ceiling));
-                }
+                let decoded = decode_slots(tokens, masks.window.center, ceiling, bounds, model);
+                let slots: Vec<usize> = decoded.iter().map(|(slot, _)| *slot).collect();
+                let objects: Vec<GuidedObject> = decoded.iter().map(|(_, o)| GuidedObject::of(o)).collect();
                 let (j, grads) = guidance_cost(&objects, masks, cfg);
                 for (&slot, g) in slots.iter().zip(&grads) {
                     let t = &mut tokens[slot * dim..(slot + 1) * dim];
@@ -341,20 +342,6 @@ impl Guidance for SpatialGuidance {
         tracing::debug!(step = t, j = total, "guidance");
         self.history.push((t, total));
         Ok(Tensor::from_vec(v, dims, x0.device())?)
-    }
-}
-
-/// The object a token decodes to (as in `tokens::decode`, without clamping the yaw vector).
-fn guided(t: &[f32], category: Category, bounds: &Bounds, center: DVec2, ceiling: f64) -> GuidedObject {
-    let v = |k: usize| (t[k] as f64).clamp(-1.0, 1.0);
-    let c = bounds.unscale_center([v(0), v(1), v(2)]);
-    let size = bounds.unscale_size([v(3), v(4), v(5)]).map(|s| s.max(0.02));
-    let z = if category.is_hanging() { ceiling - size[2] * 0.5 } else { size[2] * 0.5 };
-    GuidedObject {
-        center: DVec3::new(c[0] + center.x, c[1] + center.y, z),
-        size: DVec3::from(size),
-        yaw: (t[7] as f64).atan2(t[6] as f64),
-        hanging: category.is_hanging(),
     }
 }
 
