@@ -36,8 +36,7 @@ pub struct DemoArgs {
 pub fn run(args: &DemoArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     let started = Instant::now();
     anyhow::ensure!(args.samples > 0, "--samples: must be at least 1");
-    let files = super::generate::scene_files(&args.inputs)?;
-    anyhow::ensure!(!files.is_empty(), "{}: no scene files", args.inputs.display());
+    let files = super::eval::scene_files(&args.inputs)?;
     let inputs: Vec<Scene> = files.iter().map(Scene::load).collect::<Result<_, _>>()?;
     let guidance = args.guidance.config()?;
     std::fs::create_dir_all(&args.out).with_context(|| format!("{}: cannot create folder", args.out.display()))?;

@@ -30,7 +30,9 @@ pub struct EvalArgs {
     pub out: Option<PathBuf>,
 }
 
-fn scene_files(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
+/// The scene files under `dir` (recursively, not stats.json / calibration.json), sorted; an error
+/// when there are none. Shared by `eval`, `generate` and `demo`.
+pub fn scene_files(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
     let mut out = Vec::new();
     let mut stack = vec![dir.to_path_buf()];
     while let Some(d) = stack.pop() {

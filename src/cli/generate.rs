@@ -91,8 +91,7 @@ pub fn load_model(dir: Option<&Path>, room: RoomType, input: &Path) -> anyhow::R
 
 pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     anyhow::ensure!(args.samples > 0, "--samples: must be at least 1");
-    let files = if args.input.is_dir() { scene_files(&args.input)? } else { vec![args.input.clone()] };
-    anyhow::ensure!(!files.is_empty(), "{}: no scene files", args.input.display());
+    let files = if args.input.is_dir() { super::eval::scene_files(&args.input)? } else { vec![args.input.clone()] };
     let inputs: Vec<Scene> = files.iter().map(Scene::load).collect::<Result<_, _>>()?;
     let room = inputs[0].room_type;
     if let Some((f, s)) = files.iter().zip(&inputs).find(|(_, s)| s.room_type != room) {
@@ -169,15 +168,4 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
         }
     }
     Ok(if args.require_clean && empty > 0 { ExitStatus::Found } else { ExitStatus::Success })
-}
-
-/// The scene files (`*.json`) of a folder, sorted by name.
-pub fn scene_files(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .with_context(|| format!("{}: cannot read folder", dir.display()))?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|e| e == "json"))
-        .collect();
-    files.sort();
-    Ok(files)
 }
