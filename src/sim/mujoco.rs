@@ -1,96 +1,60 @@
-//! The humans replayed in MuJoCo (feature `mujoco`): furniture parts and walls as static box
-//! geoms, each bone a mocap body with a capsule, and an explicit `<contact><pair>` for every
-//! bone–solid pair, because MuJoCo never reports contacts between a mocap body and a body
-//! without joints. Per frame the mocap poses are set, `mj_forward` runs, and the contacts deeper
-//! than the tolerance are read.
+//! The humans replayed in MuJoCo (feature `mujoco`), in the very world `export` writes for users:
+//! furniture parts and walls as static box geoms, each bone a mocap body with a capsule, and the
+//! explicit `<contact><pair>`s that make MuJoCo report mocap-vs-static contacts. Per frame the
+//! mocap poses are set, `mj_forward` runs, and the contacts deeper than the tolerance are read.
+//!
+//! This is the one place `sim` uses `export`: checking the exported world is the point.
 
 use super::EngineContact;
-use super::solids::{Owner, Solid, furniture_solids, wall_solids};
+use super::solids::Owner;
+use crate::export::{MjcfOptions, mocap_motion, scene_mjcf};
 use crate::scene::Scene;
-use glam::{DQuat, DVec3};
 use mujoco_rs::prelude::*;
 use std::collections::HashMap;
-use std::fmt::Write;
 
-/// The MJCF of the replay world (deterministic text).
-pub fn replay_mjcf(scene: &Scene, solids: &[Solid]) -> String {
-    let mut x = String::from("<mujoco model=\"shade-sim-replay\">\n  <worldbody>\n");
-    for (k, s) in solids.iter().enumerate() {
-        let h = s.obox.half();
-        let q = DQuat::from_rotation_z(s.obox.yaw);
-        let c = s.obox.center;
-        let _ = writeln!(
-            x,
-            "    <geom name=\"s{k}\" type=\"box\" pos=\"{:.6} {:.6} {:.6}\" quat=\"{:.8} 0 0 {:.8}\" size=\"{:.6} {:.6} {:.6}\"/>",
-            c.x, c.y, c.z, q.w, q.z, h.x, h.y, h.z
-        );
-    }
-    for (i, human) in scene.humans.iter().enumerate() {
-        for (j, bone) in human.skeleton.bones.iter().enumerate() {
-            let half = human.joint_at(0, bone.a).distance(human.joint_at(0, bone.b)) * 0.5;
-            let _ = writeln!(
-                x,
-                "    <body name=\"h{i}b{j}\" mocap=\"true\"><geom name=\"h{i}b{j}\" type=\"capsule\" fromto=\"0 0 {:.6} 0 0 {:.6}\" size=\"{:.6}\"/></body>",
-                -half.max(1e-4),
-                half.max(1e-4),
-                bone.radius
-            );
-        }
-    }
-    x.push_str("  </worldbody>\n  <contact>\n");
-    for (i, human) in scene.humans.iter().enumerate() {
-        for j in 0..human.skeleton.bones.len() {
-            for k in 0..solids.len() {
-                let _ = writeln!(x, "    <pair geom1=\"h{i}b{j}\" geom2=\"s{k}\"/>");
-            }
-        }
-    }
-    x.push_str("  </contact>\n</mujoco>\n");
-    x
-}
-
-/// Replays every human of `scene` in MuJoCo and returns the contacts deeper than `tolerance`.
+/// Replays every human of `scene` in its exported MuJoCo world and returns the contacts deeper
+/// than `tolerance`.
 ///
 /// # Errors
-/// MuJoCo's message when the generated model does not load.
+/// MuJoCo's message when the exported model does not load.
 pub fn mujoco_replay(scene: &Scene, tolerance: f64) -> Result<Vec<EngineContact>, String> {
-    let solids: Vec<Solid> = furniture_solids(scene).into_iter().chain(wall_solids(scene)).collect();
-    let model = MjModel::from_xml_string(&replay_mjcf(scene, &solids)).map_err(|e| e.to_string())?;
+    let xml = scene_mjcf(scene, MjcfOptions { free_furniture: false, keyframes: false });
+    let model = MjModel::from_xml_string(&xml).map_err(|e| e.to_string())?;
     let mut data = MjData::new(&model);
-    let mut geom_owner: HashMap<usize, Owner> = HashMap::new();
-    for (k, s) in solids.iter().enumerate() {
-        if let Some(id) = model.name_to_id(MjtObjBase::mjOBJ_GEOM, &format!("s{k}")) {
-            geom_owner.insert(id, s.owner);
+    let motion = mocap_motion(scene);
+    // Geom → what it belongs to, through its body (objects) or its name (walls).
+    let objects: HashMap<&str, usize> = scene.objects.iter().enumerate().map(|(i, o)| (o.id.as_str(), i)).collect();
+    let mut owner_of: HashMap<usize, Owner> = HashMap::new();
+    let mut bone_of: HashMap<usize, (usize, usize)> = HashMap::new();
+    let bones: Vec<(usize, usize)> = scene
+        .humans
+        .iter()
+        .enumerate()
+        .flat_map(|(h, human)| (0..human.skeleton.bones.len()).map(move |b| (h, b)))
+        .collect();
+    for g in 0..model.ngeom() as usize {
+        let body = model.geom_bodyid()[g] as usize;
+        let body_name = model.id_to_name(MjtObjBase::mjOBJ_BODY, body).unwrap_or_default();
+        let geom_name = model.id_to_name(MjtObjBase::mjOBJ_GEOM, g).unwrap_or_default();
+        if let Some(&i) = objects.get(body_name) {
+            owner_of.insert(g, Owner::Object(i));
+        } else if let Some(i) = geom_name.strip_prefix("wall").and_then(|i| i.parse().ok()) {
+            owner_of.insert(g, Owner::Wall(i));
+        } else if let Some(m) = motion.bodies.iter().position(|n| *n == body_name) {
+            bone_of.insert(g, bones[m]);
         }
     }
-    let mut geom_bone: HashMap<usize, (usize, usize)> = HashMap::new();
-    let mut mocap = Vec::new();
-    for (i, human) in scene.humans.iter().enumerate() {
-        for j in 0..human.skeleton.bones.len() {
-            if let Some(id) = model.name_to_id(MjtObjBase::mjOBJ_GEOM, &format!("h{i}b{j}")) {
-                geom_bone.insert(id, (i, j));
-            }
-            mocap.push((i, j));
-        }
-    }
-    let frames = scene.humans.iter().map(|h| h.frames.len()).max().unwrap_or(0);
     let mut out = Vec::new();
-    for f in 0..frames {
-        for (m, &(i, j)) in mocap.iter().enumerate() {
-            let human = &scene.humans[i];
-            let frame = f.min(human.frames.len() - 1);
-            let bone = &human.skeleton.bones[j];
-            let (a, b) = (human.joint_at(frame, bone.a), human.joint_at(frame, bone.b));
-            let q = DQuat::from_rotation_arc(DVec3::Z, (b - a).normalize_or(DVec3::Z));
-            let c = (a + b) * 0.5;
-            data.mocap_pos_mut()[m] = [c.x, c.y, c.z];
-            data.mocap_quat_mut()[m] = [q.w, q.x, q.y, q.z];
+    for (f, poses) in motion.frames.iter().enumerate() {
+        for (m, p) in poses.iter().enumerate() {
+            data.mocap_pos_mut()[m] = [p[0], p[1], p[2]];
+            data.mocap_quat_mut()[m] = [p[3], p[4], p[5], p[6]];
         }
         data.forward();
         let mut deepest: HashMap<(usize, usize, Owner), f64> = HashMap::new();
         for c in data.contact() {
             let (g1, g2) = (c.geom[0] as usize, c.geom[1] as usize);
-            let pair = match (geom_bone.get(&g1), geom_owner.get(&g2), geom_bone.get(&g2), geom_owner.get(&g1)) {
+            let pair = match (bone_of.get(&g1), owner_of.get(&g2), bone_of.get(&g2), owner_of.get(&g1)) {
                 (Some(b), Some(o), _, _) | (_, _, Some(b), Some(o)) => (b.0, b.1, *o),
                 _ => continue,
             };

@@ -47,14 +47,17 @@ fn mjcf_is_deterministic_and_named_after_the_scene() {
     assert_eq!(a.matches("mocap=\"true\"").count(), bones);
     let frames = s.humans.iter().map(|h| h.frames.len()).max().unwrap();
     assert_eq!(a.matches("<key name=").count(), frames);
-    assert!(a.contains("<pair geom1=\"h0_pelvis-spine\""), "static furniture needs explicit pairs");
+    // Static furniture needs explicit pairs, but only where a bone comes near a part.
+    let parts: usize = s.objects.iter().map(|o| shade_sim::export::part_names(o).len()).sum();
+    let pairs = a.matches("<pair ").count();
+    assert!(pairs > 0 && pairs < bones * parts / 4, "{pairs} pairs of {} possible", bones * parts);
     let free = scene_mjcf(&s, MjcfOptions { free_furniture: true, ..MjcfOptions::default() });
-    // Free pieces get joints and need no pairs; lamps stay fixed to the ceiling and keep theirs.
+    // Free pieces get joints and need no pairs; lamps stay fixed to the ceiling.
     for o in &s.objects {
         let joint = format!("<freejoint name=\"{}_free\"/>", o.id);
         let paired = free.contains(&format!("geom2=\"{}_", o.id));
         assert_eq!(free.contains(&joint), !o.category.is_hanging(), "{}", o.id);
-        assert_eq!(paired, o.category.is_hanging(), "{}", o.id);
+        assert!(!paired || o.category.is_hanging(), "{}", o.id);
     }
 }
 
