@@ -1,4 +1,4 @@
-//! `shade-sim export SCENE --format mjcf|robosuite|png --out FILE [--free-furniture] [--validate]`.
+//! `shade-sim export SCENE --format mjcf|robosuite|png|glb --out FILE [--free-furniture] [--validate]`.
 
 use super::output::{print_json, print_text};
 use super::{ExitStatus, GlobalArgs};
@@ -18,6 +18,10 @@ pub enum Format {
     Robosuite,
     /// A top-down plan (PNG): floor, labelled furniture, walking paths, contact humans, scale.
     Png,
+    /// glTF 2.0 binary: floor, walls, furniture parts and the humans' bones as capsules, their
+    /// motion as the animation "motion".
+    #[value(alias = "gltf")]
+    Glb,
 }
 
 #[derive(Debug, Args)]
@@ -64,9 +68,13 @@ pub fn run(args: &ExportArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus>
             }
             (text.into_bytes(), validation)
         }
-        Format::Png => {
+        Format::Png | Format::Glb => {
             anyhow::ensure!(!args.validate, "{}: --validate applies to --format mjcf", args.out.display());
-            (shade_sim::export::render_plan(&scene).png_bytes(), None)
+            let bytes = match args.format {
+                Format::Png => shade_sim::export::render_plan(&scene).png_bytes(),
+                _ => shade_sim::export::scene_glb(&scene),
+            };
+            (bytes, None)
         }
     };
     write_atomic(&args.out, &bytes).with_context(|| format!("{}: cannot write", args.out.display()))?;

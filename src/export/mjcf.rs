@@ -9,9 +9,10 @@
 //! only cost narrow-phase tests each step). The floor gets no pairs. The text is deterministic: stable order, fixed precision, names from the scene's ids
 //! (`o3`, `o3_seat`, `h1_left_knee-left_ankle`).
 
+use super::palette::{MATERIALS, material};
 use crate::furniture::{Part, PartRole, template, wall_boxes};
 use crate::geom::OBox;
-use crate::scene::{Group, Object, Scene};
+use crate::scene::{Object, Scene};
 use glam::{DQuat, DVec3};
 use std::fmt::Write;
 
@@ -70,7 +71,7 @@ pub fn mocap_motion(scene: &Scene) -> MocapMotion {
     MocapMotion { fps: scene.humans.first().map_or(30.0, |h| h.fps), bodies, frames }
 }
 
-fn v3(v: DVec3) -> String {
+pub(crate) fn v3(v: DVec3) -> String {
     format!("{} {} {}", num(v.x), num(v.y), num(v.z))
 }
 
@@ -83,30 +84,6 @@ fn num(x: f64) -> String {
 
 fn quat(q: DQuat) -> String {
     format!("{} {} {} {}", num(q.w), num(q.x), num(q.y), num(q.z))
-}
-
-/// The world's materials (name, rgba).
-const MATERIALS: [(&str, [f64; 4]); 8] = [
-    ("wall", [0.9, 0.9, 0.87, 1.0]),
-    ("bed", [0.55, 0.45, 0.75, 1.0]),
-    ("seat", [0.85, 0.55, 0.25, 1.0]),
-    ("sofa", [0.45, 0.6, 0.8, 1.0]),
-    ("wood", [0.6, 0.42, 0.26, 1.0]),
-    ("storage", [0.7, 0.7, 0.66, 1.0]),
-    ("lamp", [0.95, 0.92, 0.6, 1.0]),
-    ("human", [0.9, 0.7, 0.55, 1.0]),
-];
-
-/// Material name of a category group.
-fn material(group: Group) -> &'static str {
-    match group {
-        Group::Bed => "bed",
-        Group::Chair | Group::Stool => "seat",
-        Group::Sofa => "sofa",
-        Group::Table => "wood",
-        Group::Cabinet | Group::Shelf => "storage",
-        Group::Lamp => "lamp",
-    }
 }
 
 fn role_name(role: PartRole) -> &'static str {
@@ -124,14 +101,14 @@ fn role_name(role: PartRole) -> &'static str {
 }
 
 /// Bone name `pelvis-spine`.
-fn bone_name(scene: &Scene, h: usize, b: usize) -> String {
+pub(crate) fn bone_name(scene: &Scene, h: usize, b: usize) -> String {
     let human = &scene.humans[h];
     let bone = &human.skeleton.bones[b];
     format!("{}_{}-{}", human.id, human.skeleton.joints[bone.a], human.skeleton.joints[bone.b])
 }
 
 /// Pose of a bone's mocap body in frame `f`: its midpoint, its z axis along the bone.
-fn bone_pose(scene: &Scene, h: usize, b: usize, f: usize) -> (DVec3, DQuat) {
+pub(crate) fn bone_pose(scene: &Scene, h: usize, b: usize, f: usize) -> (DVec3, DQuat) {
     let human = &scene.humans[h];
     let f = f.min(human.frames.len() - 1);
     let bone = &human.skeleton.bones[b];
@@ -200,7 +177,7 @@ fn write_assets(x: &mut String) {
     x.push_str("  <asset>\n");
     x.push_str("    <texture name=\"grid\" type=\"2d\" builtin=\"checker\" rgb1=\"0.82 0.78 0.72\" rgb2=\"0.76 0.72 0.66\" width=\"256\" height=\"256\"/>\n");
     x.push_str("    <material name=\"floor\" texture=\"grid\" texrepeat=\"8 8\"/>\n");
-    for (name, rgba) in MATERIALS {
+    for (name, rgba) in MATERIALS.iter().filter(|(n, _)| *n != "floor") {
         let _ = writeln!(x, "    <material name=\"{name}\" rgba=\"{}\"/>", rgba.map(num).join(" "));
     }
     x.push_str("  </asset>\n");
@@ -231,7 +208,7 @@ fn write_room(x: &mut String, scene: &Scene) -> Vec<StaticGeom> {
         let name = format!("wall{i}");
         let _ = writeln!(
             x,
-            "    <geom name=\"{name}\" type=\"box\" pos=\"{}\" quat=\"{}\" size=\"{}\" material=\"wall\" rgba=\"0.9 0.9 0.87 0.35\"/>",
+            "    <geom name=\"{name}\" type=\"box\" pos=\"{}\" quat=\"{}\" size=\"{}\" material=\"wall\"/>",
             v3(w.center),
             quat(DQuat::from_rotation_z(w.yaw)),
             v3(w.half())
@@ -247,8 +224,13 @@ fn write_furniture(x: &mut String, scene: &Scene, free_furniture: bool) -> Vec<S
     for o in &scene.objects {
         let b = o.obox();
         let free = free_furniture && !o.category.is_hanging();
-        let _ =
-            writeln!(x, "    <body name=\"{}\" pos=\"{}\" quat=\"{}\">", o.id, v3(b.center), quat(DQuat::from_rotation_z(b.yaw)));
+        let _ = writeln!(
+            x,
+            "    <body name=\"{}\" pos=\"{}\" quat=\"{}\">",
+            o.id,
+            v3(b.center),
+            quat(DQuat::from_rotation_z(b.yaw))
+        );
         if free {
             let _ = writeln!(x, "      <freejoint name=\"{}_free\"/>", o.id);
         }
@@ -336,8 +318,10 @@ fn write_keyframes(x: &mut String, scene: &Scene) {
     }
     x.push_str("  <keyframe>\n");
     for (f, poses) in motion.frames.iter().enumerate() {
-        let mpos: Vec<String> = poses.iter().map(|p| p[..3].iter().map(|v| num(*v)).collect::<Vec<_>>().join(" ")).collect();
-        let mquat: Vec<String> = poses.iter().map(|p| p[3..].iter().map(|v| num(*v)).collect::<Vec<_>>().join(" ")).collect();
+        let mpos: Vec<String> =
+            poses.iter().map(|p| p[..3].iter().map(|v| num(*v)).collect::<Vec<_>>().join(" ")).collect();
+        let mquat: Vec<String> =
+            poses.iter().map(|p| p[3..].iter().map(|v| num(*v)).collect::<Vec<_>>().join(" ")).collect();
         let _ = writeln!(
             x,
             "    <key name=\"frame{f}\" time=\"{}\" mpos=\"{}\" mquat=\"{}\"/>",

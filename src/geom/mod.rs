@@ -10,6 +10,7 @@ mod obox;
 mod polygon;
 mod polyline;
 mod raster;
+mod triangulate;
 
 pub use clip::{clip_convex, footprint_intersection_area, signed_area};
 pub use intersection::{intersection_volume, iou_3d};

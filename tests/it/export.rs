@@ -1,7 +1,7 @@
 //! MJCF export: deterministic text, names from ids, and the real MuJoCo (Rust and Python) loading
 //! and stepping the worlds.
 
-use crate::shade_sim;
+use crate::{reference_scenes, shade_sim};
 use shade_sim::data::generate_room;
 use shade_sim::export::{MjcfOptions, scene_mjcf};
 use shade_sim::scene::RoomType;
@@ -188,4 +188,187 @@ print("ok", model.nbody, model.nmocap)
 "#;
     let motion_file = dir.path().join("room.motion.json");
     assert!(python(".venv-robosuite", script, &[&xml, &motion_file]).starts_with("ok"));
+}
+
+/// The file name without its extension.
+fn stem(p: &std::path::Path) -> String {
+    p.file_stem().unwrap().to_string_lossy().into_owned()
+}
+
+/// The MJCF of every reference scene is the file in `mjcf/` (insta binary snapshots, so the
+/// reference exports are plain XML files MuJoCo loads). `bash scripts/build_reference_scenes.sh`
+/// rewrites them.
+#[test]
+fn reference_exports_match_the_snapshots() {
+    let references = reference_scenes();
+    assert_eq!(references.len(), crate::example_scenes().len(), "one reference scene per example");
+    for file in references {
+        let scene = shade_sim::scene::Scene::load(&file).unwrap();
+        // A reference scene is its example furnished: same floor plan and people.
+        let example =
+            shade_sim::scene::Scene::load(crate::root().join("scenes/examples").join(file.file_name().unwrap()))
+                .unwrap();
+        assert!(example.objects.is_empty() && !scene.objects.is_empty());
+        assert_eq!((&scene.floor_plan, &scene.humans), (&example.floor_plan, &example.humans));
+        insta::with_settings!({
+            snapshot_path => crate::root().join("mjcf"),
+            prepend_module_to_snapshot => false,
+            omit_expression => true,
+        }, {
+            insta::assert_binary_snapshot!(&format!("{}.xml", stem(&file)), scene_mjcf(&scene, MjcfOptions::default()).into_bytes());
+        });
+    }
+}
+
+/// Every example and reference scene exports to every format through the command line; the
+/// Python `mujoco` package loads every MJCF world (static and free furniture), replays its
+/// keyframes and steps it, and robosuite loads every arena with a robot and replays the motion.
+#[cfg(feature = "mujoco")]
+#[test]
+fn every_scene_exports_to_every_format_and_the_python_consumers_load_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mut worlds, mut free_worlds, mut arenas) = (Vec::new(), Vec::new(), Vec::new());
+    for file in crate::example_scenes().into_iter().chain(reference_scenes()) {
+        let kind = if file.starts_with(crate::root().join("scenes/reference")) { "reference" } else { "example" };
+        let name = format!("{kind}_{}", stem(&file));
+        for (format, ext, extra) in [
+            ("mjcf", "xml", None),
+            ("mjcf", "free.xml", Some("--free-furniture")),
+            ("robosuite", "arena.xml", None),
+            ("png", "png", None),
+            ("glb", "glb", None),
+        ] {
+            let out = dir.path().join(format!("{name}.{ext}"));
+            let mut args =
+                vec!["-q", "export", file.to_str().unwrap(), "--format", format, "--out", out.to_str().unwrap()];
+            args.extend(extra);
+            let o = shade_sim(&args);
+            assert_eq!(o.status.code(), Some(0), "{name} {format}: {}", crate::stderr(&o));
+            assert!(std::fs::metadata(&out).unwrap().len() > 1000, "{}", out.display());
+        }
+        worlds.push(dir.path().join(format!("{name}.xml")));
+        free_worlds.push(dir.path().join(format!("{name}.free.xml")));
+        arenas.push(dir.path().join(format!("{name}.arena.xml")));
+    }
+    // Static worlds: no furniture body moves. Free worlds (generated layouts may overlap, and
+    // people push furniture): nothing explodes — finite, slower than 5 m/s, inside the room's box.
+    // Reference scenes (with contact humans) report bone–furniture contacts through the pairs.
+    let script = r#"
+import sys, mujoco, numpy as np
+for path in sys.argv[1:]:
+    free = path.endswith(".free.xml")
+    m = mujoco.MjModel.from_xml_path(path)
+    d = mujoco.MjData(m)
+    furniture = [b for b in range(1, m.nbody) if m.body_mocapid[b] < 0]
+    touching = 0
+    for k in range(m.nkey):
+        mujoco.mj_resetDataKeyframe(m, d, k)
+        mujoco.mj_forward(m, d)
+        touching += sum(1 for c in d.contact[:d.ncon] if m.geom_bodyid[c.geom1] in furniture or m.geom_bodyid[c.geom2] in furniture)
+    start = d.xpos[furniture].copy()
+    lo, hi = d.xpos.min(axis=0) - 1.0, d.xpos.max(axis=0) + 1.0
+    for _ in range(500):
+        mujoco.mj_step(m, d)
+    assert np.isfinite(d.qpos).all() and np.isfinite(d.qvel).all() and np.isfinite(d.xpos).all(), path
+    moved = np.linalg.norm(d.xpos[furniture] - start, axis=1).max(initial=0.0)
+    if free:
+        assert np.abs(d.qvel).max(initial=0.0) < 5.0 and (d.xpos >= lo).all() and (d.xpos <= hi).all(), path
+    else:
+        assert moved < 1e-9, (path, moved)
+    print(path.rsplit("/", 1)[-1], m.nbody, m.nkey, touching, round(float(moved), 3))
+"#;
+    let mut args: Vec<&std::path::Path> = worlds.iter().map(|p| p.as_path()).collect();
+    args.extend(free_worlds.iter().map(|p| p.as_path()));
+    let report = python(".venv-mujoco", script, &args);
+    assert_eq!(report.lines().count(), worlds.len() * 2);
+    for line in report.lines().filter(|l| l.starts_with("reference_") && !l.contains(".free.")) {
+        let touching: usize = line.split(' ').nth(3).unwrap().parse().unwrap();
+        assert!(touching > 0, "no bone–furniture contact reported in {line}");
+    }
+    let script = r#"
+import json, sys, numpy as np, mujoco
+from robosuite.models.arenas import Arena
+from robosuite.models.world import MujocoWorldBase
+from robosuite.models.robots import Panda
+for arena in sys.argv[1:]:
+    world = MujocoWorldBase()
+    world.merge(Arena(arena))
+    robot = Panda()
+    robot.set_base_xpos([0.5, 0.5, 0.0])
+    world.merge(robot)
+    model = world.get_model(mode="mujoco")
+    d = mujoco.MjData(model)
+    motion = json.load(open(arena.replace(".arena.xml", ".arena.motion.json")))
+    ids = [model.body(name).mocapid[0] for name in motion["bodies"]]
+    for frame in motion["frames"][::3]:
+        for i, p in zip(ids, frame):
+            d.mocap_pos[i] = p[:3]
+            d.mocap_quat[i] = p[3:]
+        mujoco.mj_step(model, d)
+    assert np.isfinite(d.qpos).all() and np.isfinite(d.xpos).all(), arena
+    print("ok", arena.rsplit("/", 1)[-1], model.nbody)
+"#;
+    let args: Vec<&std::path::Path> = arenas.iter().map(|p| p.as_path()).collect();
+    assert_eq!(python(".venv-robosuite", script, &args).matches("ok ").count(), arenas.len());
+}
+
+/// The glb parses back with the `gltf` crate: every object, part and bone is a named node, the
+/// animation moves each bone through its midpoints, the root turns z-up into glTF's y-up, and
+/// the floor's triangles cover the floor plan.
+#[test]
+fn glb_parses_back_with_the_scenes_nodes_and_motion() {
+    let file = reference_scenes().into_iter().find(|f| stem(f) == "bedroom_l").unwrap();
+    let scene = shade_sim::scene::Scene::load(&file).unwrap();
+    let bytes = shade_sim::export::scene_glb(&scene);
+    assert_eq!(bytes, shade_sim::export::scene_glb(&scene.clone()), "deterministic");
+    let glb = gltf::Gltf::from_slice(&bytes).expect("a valid glb");
+    let blob = glb.blob.clone().expect("a BIN chunk");
+    let buffers = |_: gltf::Buffer| Some(blob.as_slice());
+    let node = |name: &str| glb.nodes().find(|n| n.name() == Some(name)).unwrap_or_else(|| panic!("no node {name}"));
+    for o in &scene.objects {
+        let parts: Vec<String> = node(&o.id).children().map(|c| c.name().unwrap().to_string()).collect();
+        let expected: Vec<String> = shade_sim::export::part_names(o).into_iter().map(|(n, _)| n).collect();
+        assert_eq!(parts, expected);
+    }
+    // Root: scene +z is glTF +y.
+    let root = glb.scenes().next().unwrap().nodes().next().unwrap();
+    let (_, r, _) = root.transform().decomposed();
+    let up = glam::Quat::from_array(r) * glam::Vec3::Z;
+    assert!((up - glam::Vec3::Y).length() < 1e-6, "{up}");
+    // Floor area.
+    let floor = node("floor").mesh().unwrap().primitives().next().unwrap();
+    let reader = floor.reader(buffers);
+    let p: Vec<glam::Vec3> = reader.read_positions().unwrap().map(glam::Vec3::from).collect();
+    let area: f32 = reader
+        .read_indices()
+        .unwrap()
+        .into_u32()
+        .collect::<Vec<_>>()
+        .chunks(3)
+        .map(|t| (p[t[1] as usize] - p[t[0] as usize]).cross(p[t[2] as usize] - p[t[0] as usize]).z * 0.5)
+        .sum();
+    assert!((f64::from(area) - scene.floor_plan.polygon().area()).abs() < 1e-3, "{area}");
+    // The animation: two channels per bone; a bone's translation at frame f is its midpoint.
+    let animation = glb.animations().next().expect("the motion");
+    let bones: usize = scene.humans.iter().map(|h| h.skeleton.bones.len()).sum();
+    assert_eq!(animation.channels().count(), 2 * bones);
+    let (h, human) = scene.humans.iter().enumerate().max_by_key(|(_, h)| h.frames.len()).unwrap();
+    let bone = &human.skeleton.bones[3];
+    let name = format!("{}_{}-{}", human.id, human.skeleton.joints[bone.a], human.skeleton.joints[bone.b]);
+    let channel = animation
+        .channels()
+        .find(|c| {
+            c.target().node().name() == Some(name.as_str())
+                && c.target().property() == gltf::animation::Property::Translation
+        })
+        .unwrap();
+    let reader = channel.reader(buffers);
+    let times: Vec<f32> = reader.read_inputs().unwrap().collect();
+    assert_eq!(times.len(), human.frames.len());
+    assert!((f64::from(*times.last().unwrap()) - (human.frames.len() - 1) as f64 / human.fps).abs() < 1e-5);
+    let gltf::animation::util::ReadOutputs::Translations(t) = reader.read_outputs().unwrap() else { panic!() };
+    for (f, got) in t.enumerate() {
+        let mid = (human.joint_at(f, bone.a) + human.joint_at(f, bone.b)) * 0.5;
+        assert!((glam::DVec3::from(got.map(f64::from)) - mid).length() < 1e-5, "human {h} frame {f}");
+    }
 }

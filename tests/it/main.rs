@@ -25,15 +25,25 @@ pub fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// The example scene files, sorted.
-pub fn example_scenes() -> Vec<PathBuf> {
-    let mut files: Vec<PathBuf> = std::fs::read_dir(root().join("scenes/examples"))
-        .expect("scenes/examples exists")
+/// The `.json` files of a folder of the repository, sorted.
+pub fn json_files(folder: &str) -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(root().join(folder))
+        .unwrap_or_else(|e| panic!("{folder}: {e}"))
         .map(|e| e.expect("readable entry").path())
         .filter(|p| p.extension().is_some_and(|e| e == "json"))
         .collect();
     files.sort();
     files
+}
+
+/// The example scene files (inputs: people and floor plans), sorted.
+pub fn example_scenes() -> Vec<PathBuf> {
+    json_files("scenes/examples")
+}
+
+/// The reference scenes (the examples furnished by the shipped models), sorted.
+pub fn reference_scenes() -> Vec<PathBuf> {
+    json_files("scenes/reference")
 }
 
 /// stderr as text.
