@@ -28,10 +28,18 @@ pub struct EngineContact {
 }
 
 /// Replays every human of `scene` in a Rapier world and returns the contacts deeper than
-/// `tolerance`, frame by frame.
+/// `tolerance`, frame by frame: the deepest per bone and owner (an object's parts are one owner,
+/// as in `exact_contacts` and the MuJoCo replay).
 pub fn rapier_replay(scene: &Scene, tolerance: f64) -> Vec<EngineContact> {
-    let mut out = Vec::new();
-    replay(scene, tolerance, |contact, _| out.push(contact));
+    let mut deepest: HashMap<(usize, usize, Owner, usize), f64> = HashMap::new();
+    replay(scene, tolerance, |c, _| {
+        let e = deepest.entry((c.human, c.bone, c.owner, c.frame)).or_insert(c.depth);
+        *e = e.max(c.depth);
+    });
+    let mut out: Vec<EngineContact> = deepest
+        .into_iter()
+        .map(|((human, bone, owner, frame), depth)| EngineContact { human, bone, owner, frame, depth })
+        .collect();
     sort_contacts(&mut out);
     out
 }
