@@ -1,6 +1,6 @@
 //! `shade-sim demo [--inputs DIR] [--out DIR]`: the main job on the shipped models. For every
-//! example input: generate layouts, check them physically, export MJCF and a PNG plan, and print
-//! one table.
+//! example input: generate layouts, check them physically, export MJCF, a PNG plan and a glb, and
+//! print one table.
 
 use super::output::{print_json, print_text};
 use super::scene_rows::{SceneRow, table};
@@ -8,7 +8,7 @@ use super::{ExitStatus, GlobalArgs};
 use anyhow::Context;
 use clap::Args;
 use rayon::prelude::*;
-use shade_sim::export::{MjcfOptions, render_plan, scene_mjcf};
+use shade_sim::export::{MjcfOptions, render_plan, scene_glb, scene_mjcf};
 use shade_sim::generator::{Generator, shipped_model};
 use shade_sim::scene::{RoomType, Scene, write_atomic};
 use shade_sim::sim::{CheckConfig, check_scene};
@@ -81,6 +81,8 @@ pub fn run(args: &DemoArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
             write_atomic(&xml_path, xml.as_bytes()).with_context(|| format!("{}: cannot write", xml_path.display()))?;
             let png_path = base.with_extension("png");
             render_plan(scene).save_png(&png_path).with_context(|| format!("{}: cannot write", png_path.display()))?;
+            let glb_path = base.with_extension("glb");
+            write_atomic(&glb_path, &scene_glb(scene)).with_context(|| format!("{}: cannot write", glb_path.display()))?;
             Ok(SceneRow::of(name, scene, Some(&report)))
         })
         .collect::<anyhow::Result<_>>()?;
@@ -91,7 +93,7 @@ pub fn run(args: &DemoArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     } else if global.quiet == 0 {
         print_text(&table(&rows))?;
         print_text(&format!(
-            "{} scenes in {:.1} s; scenes (.json), MuJoCo worlds (.xml) and plans (.png) in {}\n",
+            "{} scenes in {:.1} s; scenes (.json), MuJoCo worlds (.xml), plans (.png) and glTF (.glb) in {}\n",
             rows.len(),
             started.elapsed().as_secs_f64(),
             args.out.display()

@@ -222,7 +222,8 @@ fn reference_exports_match_the_snapshots() {
 
 /// Every example and reference scene exports to every format through the command line; the
 /// Python `mujoco` package loads every MJCF world (static and free furniture), replays its
-/// keyframes and steps it, and robosuite loads every arena with a robot and replays the motion.
+/// keyframes and steps it, robosuite loads every arena with a robot and replays the motion, and
+/// the Khronos glTF validator passes every glb.
 #[cfg(feature = "mujoco")]
 #[test]
 fn every_scene_exports_to_every_format_and_the_python_consumers_load_them() {
@@ -310,6 +311,16 @@ for arena in sys.argv[1:]:
 "#;
     let args: Vec<&std::path::Path> = arenas.iter().map(|p| p.as_path()).collect();
     assert_eq!(python(".venv-robosuite", script, &args).matches("ok ").count(), arenas.len());
+    // The Khronos glTF validator (npm, installed by scripts/test.sh): no errors, no warnings.
+    for glb in worlds.iter().map(|w| w.with_extension("glb")) {
+        let o = std::process::Command::new("node")
+            .arg(crate::root().join("scripts/glb_viewer/validate.mjs"))
+            .arg(&glb)
+            .output()
+            .expect("node runs");
+        let report = crate::stdout(&o);
+        assert!(o.status.success() && report.contains(": 0 errors, 0 warnings"), "{report}{}", crate::stderr(&o));
+    }
 }
 
 /// The glb parses back with the `gltf` crate: every object, part and bone is a named node, the

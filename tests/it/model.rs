@@ -256,5 +256,6 @@ fn every_room_type_has_a_shipped_model_and_the_demo_runs_on_it() {
         assert_eq!(scene.objects.len() as u64, row["objects"].as_u64().unwrap());
         assert!(std::fs::read_to_string(out.join(format!("{stem}.xml"))).unwrap().starts_with("<mujoco"));
         assert!(std::fs::read(out.join(format!("{stem}.png"))).unwrap().starts_with(b"\x89PNG"));
+        assert!(std::fs::read(out.join(format!("{stem}.glb"))).unwrap().starts_with(b"glTF"));
     }
 }
