@@ -82,7 +82,8 @@ pub fn run(args: &DemoArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
             let png_path = base.with_extension("png");
             render_plan(scene).save_png(&png_path).with_context(|| format!("{}: cannot write", png_path.display()))?;
             let glb_path = base.with_extension("glb");
-            write_atomic(&glb_path, &scene_glb(scene)).with_context(|| format!("{}: cannot write", glb_path.display()))?;
+            write_atomic(&glb_path, &scene_glb(scene))
+                .with_context(|| format!("{}: cannot write", glb_path.display()))?;
             Ok(SceneRow::of(name, scene, Some(&report)))
         })
         .collect::<anyhow::Result<_>>()?;

@@ -42,8 +42,9 @@ pub struct GenerateArgs {
 /// Collision guidance flags (shared with `demo`).
 #[derive(Debug, Clone, Args)]
 pub struct GuidanceArgs {
-    /// Guidance terms: none, all, or a list of mot, bound, obj, phys (physics feedback in the last steps).
-    #[arg(long, default_value = "all")]
+    /// Guidance terms: none, all (= mot,bound,obj), or a list of mot, bound, obj, phys (physics
+    /// feedback in the last steps) and polish (exact corrections of the decoded layout).
+    #[arg(long, default_value = "all,polish")]
     pub guidance: String,
     /// Step size γ of the guidance (default: the tuned value in docs/RESULTS.md).
     #[arg(long)]

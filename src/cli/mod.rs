@@ -13,6 +13,7 @@ mod generate;
 mod import;
 mod inspect;
 mod output;
+mod polish;
 mod progress;
 mod scene_rows;
 mod synth;
@@ -91,16 +92,19 @@ pub enum Command {
     /// Metrics of generated scene sets against a reference: contact IoU, Col_mot, R_out, Col_obj,
     /// CKL, E_pen and physics rates (SHADE's Table 1).
     Eval(eval::EvalArgs),
-    /// Export a scene: a MuJoCo world (MJCF) with the humans as mocap bodies and their motion
-    /// as keyframes.
+    /// Export a scene: a MuJoCo world (MJCF) or robosuite arena with the humans as mocap bodies,
+    /// a glb with their motion as an animation, or a top-down plan (PNG).
     Export(export::ExportArgs),
     /// The main job on the shipped models: generate layouts for every example input, check them
-    /// physically, export MJCF and PNG plans into out/demo, print a table.
+    /// physically, export MJCF, PNG plans and glb into out/demo, print a table.
     Demo(demo::DemoArgs),
     /// Generate furniture layouts for an input's floor plan and humans with a SHADE model.
     Generate(generate::GenerateArgs),
     /// Train the SHADE denoiser on a calibrated dataset (resumable; checkpoints on Ctrl-C).
     Train(train::TrainArgs),
+    /// Small exact corrections of layouts: furniture under its contact humans, inside the walls,
+    /// apart, off walking paths.
+    Polish(polish::PolishArgs),
     /// Convert the licensed MIME release of 3D-FRONT HUMAN (folders of boxes.npz) to shade-scene/1.
     #[command(name = "import-3dfront-human")]
     Import3dfrontHuman(import::ImportArgs),
@@ -140,6 +144,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
         Command::Demo(args) => demo::run(args, &cli.global),
         Command::Generate(args) => generate::run(args, &cli.global),
         Command::Train(args) => train::run(args, &cli.global),
+        Command::Polish(args) => polish::run(args, &cli.global),
         Command::Import3dfrontHuman(args) => import::run(args, &cli.global),
     };
     match result {

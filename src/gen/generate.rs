@@ -87,10 +87,13 @@ impl Generator {
                 guide.as_mut().map(|g| g.as_mut() as &mut dyn Guidance),
             )?;
             let per_item = meta.model.slots() * meta.model.token_dim();
-            for (&(i, _), t) in chunk.iter().zip(tokens.chunks_exact(per_item)) {
+            for (item, (&(i, _), t)) in chunk.iter().zip(tokens.chunks_exact(per_item)).enumerate() {
                 let mut scene = inputs[i].clone();
                 let center = features[i].0.window.center;
                 scene.objects = tokens::decode(t, center, scene.floor_plan.height, &meta.bounds, &meta.model);
+                if let Some(g) = guide.as_mut() {
+                    g.finish(item, &mut scene);
+                }
                 out[i].push(scene);
             }
             done += chunk.len();

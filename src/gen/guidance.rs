@@ -49,6 +49,9 @@ pub struct GuidanceConfig {
     /// …that are multiples of `phys_every`.
     #[serde(default)]
     pub phys_every: usize,
+    /// Rounds of polishing after the last step (`polish_scene`; 0 = off).
+    #[serde(default)]
+    pub polish: usize,
 }
 
 impl GuidanceConfig {
@@ -63,11 +66,15 @@ impl GuidanceConfig {
             phys: 0.0,
             phys_until: 20,
             phys_every: 4,
+            polish: 0,
         }
     }
 
     /// The weight `phys` takes when the term is asked for.
     pub const PHYS_WEIGHT: f64 = 1.0;
+
+    /// The rounds `polish` takes when it is asked for.
+    pub const POLISH_ROUNDS: usize = 60;
 
     /// Only the named terms (`mot`, `bound`, `obj`, `all`, `none`), comma-separated.
     pub fn parse(list: &str) -> Result<GuidanceConfig, String> {
@@ -81,7 +88,10 @@ impl GuidanceConfig {
                 "bound" => cfg.bound = full.bound,
                 "obj" | "object" => cfg.object = full.object,
                 "phys" => cfg.phys = Self::PHYS_WEIGHT,
-                other => return Err(format!("unknown guidance term {other:?} (none, all, mot, bound, obj, phys)")),
+                "polish" => cfg.polish = Self::POLISH_ROUNDS,
+                other => {
+                    return Err(format!("unknown guidance term {other:?} (none, all, mot, bound, obj, phys, polish)"));
+                }
             }
         }
         Ok(cfg)
@@ -103,11 +113,28 @@ impl GuidanceConfig {
             let phys = super::PhysicsGuidance::new(model, bounds, scenes, self.phys, self.phys_until, self.phys_every);
             chain.push(Box::new(phys));
         }
+        if self.polish > 0 {
+            chain.push(Box::new(Polish(self.polish)));
+        }
         match chain.len() {
             0 => None,
             1 => chain.pop(),
             _ => Some(Box::new(super::phys_guidance::Chain(chain))),
         }
+    }
+}
+
+/// Polishing as a guidance: nothing during sampling, `polish_scene` on every decoded scene.
+#[derive(Debug, Clone, Copy)]
+struct Polish(usize);
+
+impl Guidance for Polish {
+    fn guide(&mut self, x0: &Tensor, _t: usize) -> Result<Tensor, GenError> {
+        Ok(x0.clone())
+    }
+
+    fn finish(&mut self, _item: usize, scene: &mut Scene) {
+        super::polish_scene(scene, self.0);
     }
 }
 

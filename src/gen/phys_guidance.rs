@@ -147,6 +147,12 @@ impl Guidance for Chain {
         }
         Ok(x)
     }
+
+    fn finish(&mut self, item: usize, scene: &mut Scene) {
+        for g in &mut self.0 {
+            g.finish(item, scene);
+        }
+    }
 }
 
 #[cfg(test)]

@@ -10,10 +10,14 @@ use super::{Denoiser, GenError, Schedule};
 use crate::data::Rng;
 use candle_core::{Device, Tensor};
 
-/// Changes the clean estimate x̂0 (B, slots, token_dim) at step `t` (counting down from T − 1).
+/// Changes the clean estimate x̂0 (B, slots, token_dim) at step `t` (counting down from T − 1),
+/// and may adjust each decoded scene after the last step.
 pub trait Guidance {
     /// The guided estimate x̃0.
     fn guide(&mut self, x0: &Tensor, t: usize) -> Result<Tensor, GenError>;
+
+    /// Adjusts the decoded scene of batch item `item` after sampling (default: nothing).
+    fn finish(&mut self, _item: usize, _scene: &mut crate::scene::Scene) {}
 }
 
 /// Samples a batch; `seeds[i]` drives item i. Returns the tokens (B × slots × token_dim).

@@ -188,3 +188,21 @@ fn conditions_into_an_unwritable_place_fails_cleanly() {
     assert!(err.starts_with(&format!("error: {}: cannot create folder", target.display())), "{err}");
     assert_eq!(std::fs::read_to_string(&blocker).unwrap(), "a file, not a folder");
 }
+
+#[test]
+fn polish_reads_every_scene_before_writing_any() {
+    let dir = tempfile::tempdir().unwrap();
+    let inputs = dir.path().join("in");
+    std::fs::create_dir_all(&inputs).unwrap();
+    write_file(&inputs, "a.json", &valid().to_string());
+    let mut v = valid();
+    v["objects"][0]["size"][0] = json!(f64::NAN.to_string());
+    let bad = write_file(&inputs, "b.json", &v.to_string());
+    let out_dir = dir.path().join("out");
+    let out = shade_sim(&["polish", inputs.to_str().unwrap(), "--out", out_dir.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = stderr(&out);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.starts_with(&format!("error: {}: ", bad.display())), "{err}");
+    assert!(!out_dir.exists(), "nothing written for a rejected folder");
+}

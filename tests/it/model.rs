@@ -144,6 +144,38 @@ fn train_writes_a_checkpoint_and_generate_is_deterministic() {
     assert_eq!(a, b);
     assert_ne!(a, c);
     assert_ne!(a[0], a[1]);
+    // The default guidance ends with polishing: the same as sampling with the three terms only
+    // and running `polish` on the result.
+    let unpolished = dir.path().join("unpolished");
+    let o = shade_sim(&[
+        "-q",
+        "generate",
+        "--input",
+        input.to_str().unwrap(),
+        "--out",
+        unpolished.to_str().unwrap(),
+        "--samples",
+        "2",
+        "--seed",
+        "5",
+        "--model",
+        model.to_str().unwrap(),
+        "--guidance",
+        "all",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let polished = dir.path().join("polished");
+    let o = shade_sim(&["-q", "polish", unpolished.to_str().unwrap(), "--out", polished.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for (k, expected) in a.iter().enumerate() {
+        let name = format!("bedroom_rect_{k}.json");
+        assert_ne!(
+            &std::fs::read_to_string(unpolished.join(&name)).unwrap(),
+            expected,
+            "polishing changes a tiny model's layout"
+        );
+        assert_eq!(&std::fs::read_to_string(polished.join(&name)).unwrap(), expected);
+    }
     // --require-clean: an (untrained) tiny model's layouts never pass the check; every round samples
     // anew, nothing is written and the exit status is 1.
     let strict = dir.path().join("strict");

@@ -40,6 +40,16 @@ fn save_then_load_round_trips_exactly() {
     assert_eq!(frame_lines, 4);
 }
 
+/// Generated scenes carry arbitrary f64s (17 significant digits): reading and writing them again
+/// gives the same bytes (serde_json parses floats exactly with `float_roundtrip`).
+#[test]
+fn generated_scene_files_load_and_save_byte_for_byte() {
+    for file in crate::reference_scenes() {
+        let text = std::fs::read_to_string(&file).unwrap();
+        assert_eq!(Scene::load(&file).unwrap().to_json(), text, "{}", file.display());
+    }
+}
+
 #[test]
 fn an_invalid_scene_is_not_written_and_the_old_file_survives() {
     let dir = tempfile::tempdir().unwrap();
