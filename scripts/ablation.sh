@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # SHADE's Table 3 on the calibrated synthetic test splits: the shipped models sampled with
 # none / +motion / +boundary / +object / all / all+phys guidance (one sample per test input, seed 0),
-# each folder a row of `shade-sim eval` (Col_mot, R_out, Col_obj, contact IoU, physics rates).
+# then all+polish and all+phys+polish (the default `all,polish` is sampling with `all` and polishing:
+# `shade-sim polish` on those folders gives the same files, tests/it/model.rs checks it), each folder
+# a row of `shade-sim eval` (Col_mot, R_out, Col_obj, contact IoU, physics rates).
 # Usage: bash scripts/ablation.sh [DATA_DIR] [OUT_DIR] [ROOMS…]   (defaults: data out/ablation, all rooms)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -21,6 +23,11 @@ for room in "${rooms[@]}"; do
         $bin --no-progress -q generate --input "$data/$room/test" --out "$out/$room/$name" --seed 0 --guidance "$terms"
         printf '%s %-9s %6.1f s\n' "$room" "$name" "$(echo "$(date +%s.%N) - $start" | bc)" >&2
         dirs+=("$out/$room/$name")
+    done
+    for name in all all+phys; do
+        rm -rf "$out/$room/$name+polish"
+        $bin --no-progress -q polish "$out/$room/$name" --out "$out/$room/$name+polish"
+        dirs+=("$out/$room/$name+polish")
     done
     echo "## $room"
     $bin --no-progress eval --pred "${dirs[@]}" --ref "$data/$room" --out "$out/$room.json"
