@@ -8,7 +8,8 @@
 //! by the smallest shift that puts the box's footprint inside its own. Then overlapping objects are
 //! pushed apart by their footprints' minimum translation vector, objects standing on walking
 //! paths are pushed off them, and finally every footprint is moved inside the floor plan. Objects
-//! holding a contact move a fifth as much for overlaps and paths. Rounds stop when nothing moves
+//! holding a contact move a fifth as much for overlaps and paths; a pair is separated along the
+//! shortest axis that keeps both inside the walls. Rounds stop when nothing moves
 //! more than a millimetre.
 //!
 //! It does not add, remove or re-categorise objects, turn them, or resolve what it cannot reach by
@@ -81,10 +82,18 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
                 if intersection_volume(&a, &b) <= 1e-9 {
                     continue;
                 }
-                let Some(mtv) = footprint_mtv(&a, &b) else { continue };
                 let (wi, wj) = (mobility[i], mobility[j]);
-                shift(&mut scene.objects[i], mtv * (wi / (wi + wj)));
-                shift(&mut scene.objects[j], -mtv * (wj / (wi + wj)));
+                let (si, sj) = (wi / (wi + wj), wj / (wi + wj));
+                // The shortest separation that keeps both inside the walls, else the shortest.
+                let fits = |m: DVec2| {
+                    let moved = |o: &OBox, d: DVec2| OBox::new(o.center + d.extend(0.0), o.size, o.yaw);
+                    inside_push(&moved(&a, m * si), &polygon).length() < 1e-6
+                        && inside_push(&moved(&b, -m * sj), &polygon).length() < 1e-6
+                };
+                let separations = footprint_separations(&a, &b);
+                let Some(&mtv) = separations.iter().find(|m| fits(**m)).or(separations.first()) else { continue };
+                shift(&mut scene.objects[i], mtv * si);
+                shift(&mut scene.objects[j], -mtv * sj);
             }
         }
         for o in &mut scene.objects {
@@ -208,28 +217,27 @@ fn containment_shift(contact: &OBox, o: &OBox) -> DVec2 {
     ax * s.x + ay * s.y
 }
 
-/// The move of `a` (m) that separates its footprint from `b`'s along the axis of least overlap,
-/// with a little clearance; `None` if the footprints do not overlap.
-fn footprint_mtv(a: &OBox, b: &OBox) -> Option<DVec2> {
+/// The moves of `a` (m) that separate its footprint from `b`'s along each separating axis (both
+/// directions), with a little clearance, shortest first; empty if the footprints do not overlap.
+fn footprint_separations(a: &OBox, b: &OBox) -> Vec<DVec2> {
     let (pa, pb) = (a.footprint(), b.footprint());
     let (a1, a2) = a.axes();
     let (b1, b2) = b.axes();
-    let mut best: Option<(f64, DVec2)> = None;
+    let mut out = Vec::with_capacity(8);
     for axis in [a1, a2, b1, b2] {
         let span = |ps: &[DVec2; 4]| {
             ps.iter().map(|p| p.dot(axis)).fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)))
         };
         let ((la, ha), (lb, hb)) = (span(&pa), span(&pb));
-        let overlap = ha.min(hb) - la.max(lb);
-        if overlap <= 0.0 {
-            return None;
+        if ha.min(hb) - la.max(lb) <= 0.0 {
+            return Vec::new();
         }
-        if best.is_none_or(|(o, _)| overlap < o) {
-            let sign = if (a.center - b.center).truncate().dot(axis) >= 0.0 { 1.0 } else { -1.0 };
-            best = Some((overlap, axis * sign));
-        }
+        // Moving a along +axis until its low end passes b's high end, or along −axis.
+        out.push(axis * (hb - la + CLEARANCE));
+        out.push(-axis * (ha - lb + CLEARANCE));
     }
-    best.map(|(overlap, dir)| dir * (overlap + CLEARANCE))
+    out.sort_by(|x, y| x.length().total_cmp(&y.length()));
+    out
 }
 
 /// A push of `b` off the walking humans' free space: away from the centroid of the free-space
@@ -257,23 +265,44 @@ fn path_push(b: &OBox, cond: &Conditions) -> DVec2 {
     dir * depth.clamp(w.pixel(), MAX_STEP)
 }
 
-/// The move that brings every footprint corner of `b` at least `CLEARANCE` inside `polygon`
-/// (corner by corner, worst first, a few times).
+/// The move that brings `b`'s footprint inside `polygon` with `CLEARANCE` to spare, a few steps of
+/// the worst offence first: a footprint corner outside (or too near the boundary), or a polygon
+/// corner inside the footprint (an L-shaped room's inner corner, which all four footprint corners
+/// can miss).
 fn inside_push(b: &OBox, polygon: &Polygon) -> DVec2 {
     let mut total = DVec2::ZERO;
+    let (ax, ay) = b.axes();
+    let half = b.half().truncate();
     for _ in 0..4 {
-        let worst = b
-            .footprint()
-            .map(|p| {
-                let p = p + total;
-                (polygon.signed_distance(p) + CLEARANCE, p)
-            })
-            .into_iter()
-            .max_by(|x, y| x.0.total_cmp(&y.0));
-        let Some((excess, p)) = worst.filter(|(e, _)| *e > 1e-9) else { break };
-        let q = nearest_boundary_point(polygon, p);
-        let inward = if polygon.contains(p) { p - q } else { q - p };
-        total += inward.try_normalize().unwrap_or(DVec2::ZERO) * excess;
+        let centre = b.center.truncate() + total;
+        let mut worst: Option<(f64, DVec2)> = None;
+        let mut consider = |excess: f64, push: DVec2| {
+            if excess > 1e-9 && worst.is_none_or(|(e, _)| excess > e) {
+                worst = Some((excess, push));
+            }
+        };
+        for p in b.footprint().map(|p| p + total) {
+            let excess = polygon.signed_distance(p) + CLEARANCE;
+            let q = nearest_boundary_point(polygon, p);
+            let inward = if polygon.contains(p) { p - q } else { q - p };
+            consider(excess, inward.try_normalize().unwrap_or(DVec2::ZERO) * excess);
+        }
+        for &v in &polygon.points {
+            let local = DVec2::new((v - centre).dot(ax), (v - centre).dot(ay));
+            let exit = half - local.abs();
+            if exit.x <= 0.0 || exit.y <= 0.0 {
+                continue;
+            }
+            // Move the footprint off the corner through its nearer side.
+            let push = if exit.x < exit.y {
+                -ax * local.x.signum() * (exit.x + CLEARANCE)
+            } else {
+                -ay * local.y.signum() * (exit.y + CLEARANCE)
+            };
+            consider(exit.x.min(exit.y) + CLEARANCE, push);
+        }
+        let Some((_, push)) = worst else { break };
+        total += push;
     }
     total
 }
@@ -328,14 +357,20 @@ mod tests {
     }
 
     #[test]
-    fn mtv_separates_two_overlapping_boxes_exactly() {
+    fn separations_part_two_overlapping_boxes_shortest_first() {
         let a = OBox::new(DVec3::new(0.0, 0.0, 0.5), DVec3::new(1.0, 1.0, 1.0), 0.0);
         let b = OBox::new(DVec3::new(0.8, 0.1, 0.5), DVec3::new(1.0, 1.0, 1.0), 0.0);
-        let m = footprint_mtv(&a, &b).unwrap();
-        assert!((m - DVec2::new(-(0.2 + CLEARANCE), 0.0)).length() < 1e-12, "{m}");
-        let moved = OBox::new(a.center + m.extend(0.0), a.size, 0.0);
-        assert!(intersection_volume(&moved, &b) <= 1e-12);
-        assert!(footprint_mtv(&moved, &b).is_none());
+        let all = footprint_separations(&a, &b);
+        assert_eq!(all.len(), 8);
+        // a spans [−0.5, 0.5]², b [0.3, 1.3] × [−0.4, 0.6] (both axes twice): 0.2 left, 0.9 down,
+        // 1.1 up, 1.8 right.
+        assert!((all[0] - DVec2::new(-(0.2 + CLEARANCE), 0.0)).length() < 1e-12, "{all:?}");
+        assert!((all[2] - DVec2::new(0.0, -(0.9 + CLEARANCE))).length() < 1e-12, "{all:?}");
+        for m in &all {
+            let moved = OBox::new(a.center + m.extend(0.0), a.size, 0.0);
+            assert!(intersection_volume(&moved, &b) <= 1e-12, "{m}");
+            assert!(footprint_separations(&moved, &b).is_empty());
+        }
     }
 
     #[test]
