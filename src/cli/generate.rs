@@ -1,5 +1,6 @@
-//! `shade-sim generate --input IN.json --out DIR [--samples K] [--seed S] [--model DIR]`:
-//! layouts for an input's floor plan and humans, written as `DIR/<input>_<k>.json`.
+//! `shade-sim generate --input IN.json|DIR --out DIR [--samples K] [--seed S] [--model DIR]`:
+//! layouts for an input's floor plan and humans, written as `DIR/<input>_<k>.json`. A folder may
+//! mix room types: each type is sampled with its own shipped model (seeds per input within it).
 
 use super::output::{print_json, print_text};
 use super::scene_rows::{SceneRow, table};
@@ -90,51 +91,96 @@ pub fn load_model(dir: Option<&Path>, room: RoomType, input: &Path) -> anyhow::R
     Ok(Generator::new(checkpoint))
 }
 
-pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
-    anyhow::ensure!(args.samples > 0, "--samples: must be at least 1");
-    let files = if args.input.is_dir() { super::eval::scene_files(&args.input)? } else { vec![args.input.clone()] };
-    let inputs: Vec<Scene> = files.iter().map(Scene::load).collect::<Result<_, _>>()?;
-    let room = inputs[0].room_type;
-    if let Some((f, s)) = files.iter().zip(&inputs).find(|(_, s)| s.room_type != room) {
-        anyhow::bail!(
-            "{}: is a {} but {} is a {room}; generate one room type at a time",
-            f.display(),
-            s.room_type,
-            files[0].display()
-        );
-    }
-    let guidance = args.guidance.config()?;
-    let generator = load_model(args.model.as_deref(), room, &files[0])?;
-    let bar = super::progress::bar(global, (inputs.len() * args.samples) as u64, "generate");
-    let mut factory = guidance_factory(&generator, guidance);
+/// The layouts kept for each input, how many were sampled and how many passed the check.
+struct Sampled {
+    kept: Vec<Vec<(Scene, Option<CheckReport>)>>,
+    sampled: usize,
+    accepted: usize,
+}
+
+/// Samples `args.samples` layouts for each of `inputs` (one room type), resampling with new seeds
+/// under --require-clean; `progress` gets the number of layouts done.
+fn sample_inputs(
+    generator: &Generator,
+    inputs: &[Scene],
+    args: &GenerateArgs,
+    guidance: &GuidanceConfig,
+    progress: &mut dyn FnMut(usize),
+) -> anyhow::Result<Sampled> {
+    let mut factory = guidance_factory(generator, guidance.clone());
     let rounds = if args.require_clean { args.attempts.max(1) } else { 1 };
     let check = CheckConfig::default();
-    let mut kept: Vec<Vec<(Scene, Option<CheckReport>)>> = vec![Vec::new(); inputs.len()];
-    let (mut sampled, mut accepted) = (0usize, 0usize);
+    let mut s = Sampled { kept: vec![Vec::new(); inputs.len()], sampled: 0, accepted: 0 };
     for round in 0..rounds {
-        let wanted: Vec<usize> = (0..inputs.len()).filter(|&i| kept[i].len() < args.samples).collect();
+        let wanted: Vec<usize> = (0..inputs.len()).filter(|&i| s.kept[i].len() < args.samples).collect();
         if wanted.is_empty() {
             break;
         }
         let batch: Vec<Scene> = wanted.iter().map(|&i| inputs[i].clone()).collect();
         // Round 0 uses the seed itself, so a clean first sample is the same as without the flag.
         let seed = args.seed.wrapping_add(round as u64 * 1_000_003);
+        let accepted = s.accepted;
         let out = generator.generate_with(&batch, args.samples, seed, &mut factory, &mut |done| {
-            bar.set_position((accepted + done.min(args.samples * inputs.len())) as u64)
+            progress(accepted + done.min(args.samples * inputs.len()))
         })?;
         for (&i, scenes) in wanted.iter().zip(out) {
             for scene in scenes {
-                sampled += 1;
+                s.sampled += 1;
                 if !args.require_clean {
-                    kept[i].push((scene, None));
+                    s.kept[i].push((scene, None));
                     continue;
                 }
                 let report = check_scene(&scene, &check);
-                if report.is_clean() && kept[i].len() < args.samples {
-                    accepted += 1;
-                    kept[i].push((scene, Some(report)));
+                if report.is_clean() && s.kept[i].len() < args.samples {
+                    s.accepted += 1;
+                    s.kept[i].push((scene, Some(report)));
                 }
             }
+        }
+    }
+    Ok(s)
+}
+
+pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
+    anyhow::ensure!(args.samples > 0, "--samples: must be at least 1");
+    let files = if args.input.is_dir() { super::eval::scene_files(&args.input)? } else { vec![args.input.clone()] };
+    let inputs: Vec<Scene> = files.iter().map(Scene::load).collect::<Result<_, _>>()?;
+    let guidance = args.guidance.config()?;
+    // One model per room type, in the order the types first appear (with --model: one type only).
+    let mut rooms: Vec<RoomType> = Vec::new();
+    for s in &inputs {
+        if !rooms.contains(&s.room_type) {
+            rooms.push(s.room_type);
+        }
+    }
+    if args.model.is_some() && rooms.len() > 1 {
+        let (f, s) = files.iter().zip(&inputs).find(|(_, s)| s.room_type != rooms[0]).expect("a second room type");
+        anyhow::bail!(
+            "{}: is a {} but {} is a {}; a --model generates one room type",
+            f.display(),
+            s.room_type,
+            files[0].display(),
+            rooms[0]
+        );
+    }
+    let generators: Vec<(RoomType, Generator, Vec<usize>)> = rooms
+        .iter()
+        .map(|&room| -> anyhow::Result<_> {
+            let members: Vec<usize> = (0..inputs.len()).filter(|&i| inputs[i].room_type == room).collect();
+            Ok((room, load_model(args.model.as_deref(), room, &files[members[0]])?, members))
+        })
+        .collect::<anyhow::Result<_>>()?;
+    let bar = super::progress::bar(global, (inputs.len() * args.samples) as u64, "generate");
+    let mut kept: Vec<Vec<(Scene, Option<CheckReport>)>> = vec![Vec::new(); inputs.len()];
+    let (mut sampled, mut accepted, mut offset) = (0usize, 0usize, 0usize);
+    for (_, generator, members) in &generators {
+        let group: Vec<Scene> = members.iter().map(|&i| inputs[i].clone()).collect();
+        let s =
+            sample_inputs(generator, &group, args, &guidance, &mut |done| bar.set_position((offset + done) as u64))?;
+        offset += members.len() * args.samples;
+        (sampled, accepted) = (sampled + s.sampled, accepted + s.accepted);
+        for (&i, k) in members.iter().zip(s.kept) {
+            kept[i] = k;
         }
     }
     bar.finish_and_clear();

@@ -290,4 +290,25 @@ fn every_room_type_has_a_shipped_model_and_the_demo_runs_on_it() {
         assert!(std::fs::read(out.join(format!("{stem}.png"))).unwrap().starts_with(b"\x89PNG"));
         assert!(std::fs::read(out.join(format!("{stem}.glb"))).unwrap().starts_with(b"glTF"));
     }
+    // `generate` on the same mixed folder samples each room type with its own model, as the demo
+    // does: the same layouts.
+    let generated = dir.path().join("generated");
+    let o = shade_sim(&["-q", "generate", "--input", inputs.to_str().unwrap(), "--out", generated.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for stem in ["bedroom_rect_0", "dining_l_0"] {
+        let file = format!("{stem}.json");
+        assert!(std::fs::read(generated.join(&file)).unwrap() == std::fs::read(out.join(&file)).unwrap(), "{stem}");
+    }
+    // One --model cannot serve two room types.
+    let o = shade_sim(&[
+        "generate",
+        "--input",
+        inputs.to_str().unwrap(),
+        "--out",
+        dir.path().join("x").to_str().unwrap(),
+        "--model",
+        root().join("models/bedroom").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("a --model generates one room type"), "{}", stderr(&o));
 }
