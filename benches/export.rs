@@ -10,23 +10,12 @@ use criterion::{Criterion, criterion_group};
 mod common;
 use common::median;
 use shade_sim::export::{MjcfOptions, render_plan, scene_glb, scene_mjcf};
-use shade_sim::scene::Scene;
 use std::hint::black_box;
-
-fn references() -> Vec<(String, Scene)> {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/reference");
-    let mut files: Vec<_> = std::fs::read_dir(dir).expect("scenes/reference").map(|e| e.unwrap().path()).collect();
-    files.sort();
-    files
-        .into_iter()
-        .map(|f| (f.file_stem().unwrap().to_string_lossy().into_owned(), Scene::load(&f).expect("a scene")))
-        .collect()
-}
 
 const ARENA: MjcfOptions = MjcfOptions { free_furniture: false, keyframes: false };
 
 fn bench(c: &mut Criterion) {
-    let scenes = references();
+    let scenes = common::named_scenes("scenes/reference");
     let (_, s) = scenes.iter().find(|(n, _)| n == "bedroom_rect").expect("the bedroom reference");
     c.bench_function("export/mjcf", |b| b.iter(|| scene_mjcf(black_box(s), MjcfOptions::default())));
     c.bench_function("export/robosuite_arena", |b| b.iter(|| scene_mjcf(black_box(s), ARENA)));
@@ -37,7 +26,7 @@ fn bench(c: &mut Criterion) {
 /// Median milliseconds of each export for every reference scene.
 fn table() {
     println!("scene          objects  frames  mjcf ms  arena ms  glb ms  png ms  validate ms");
-    for (name, s) in references() {
+    for (name, s) in common::named_scenes("scenes/reference") {
         let ms = |f: &mut dyn FnMut()| median(5, f) * 1e3;
         let mjcf = ms(&mut || {
             black_box(scene_mjcf(&s, MjcfOptions::default()));

@@ -8,18 +8,9 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use glam::{DVec2, DVec3};
 use shade_sim::geom::{Mask, OBox, RoomWindow, iou_3d};
 use shade_sim::human::{Conditions, contact_boxes, free_space_mask};
-use shade_sim::scene::Scene;
 use std::hint::black_box;
 
-fn examples() -> Vec<(String, Scene)> {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/examples");
-    let mut files: Vec<_> = std::fs::read_dir(dir).expect("examples exist").map(|e| e.unwrap().path()).collect();
-    files.sort();
-    files
-        .into_iter()
-        .map(|f| (f.file_stem().unwrap().to_string_lossy().into_owned(), Scene::load(&f).expect("valid example")))
-        .collect()
-}
+mod common;
 
 fn boxes(n: usize) -> Vec<OBox> {
     (0..n)
@@ -35,7 +26,7 @@ fn boxes(n: usize) -> Vec<OBox> {
 }
 
 fn bench(c: &mut Criterion) {
-    let scenes = examples();
+    let scenes = common::named_scenes("scenes/examples");
     let (name, scene) = &scenes[0];
     let polygon = scene.floor_plan.polygon();
     let window = RoomWindow::for_room(scene.room_type, &polygon);

@@ -1,4 +1,20 @@
-//! Helpers shared by the benches that print ratios measured in the same run.
+//! Helpers shared by the benches: medians for the ratios printed at the end of a run, and the
+//! repository's scene folders. (Each bench uses some of them.)
+#![allow(dead_code)]
+
+use shade_sim::scene::Scene;
+
+/// The scenes of a folder of the repository (`scenes/examples`, `scenes/reference`), sorted by
+/// file name, with their file stems.
+pub fn named_scenes(folder: &str) -> Vec<(String, Scene)> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(folder);
+    let mut files: Vec<_> = std::fs::read_dir(&dir).expect("a scene folder").map(|e| e.unwrap().path()).collect();
+    files.sort();
+    files
+        .into_iter()
+        .map(|f| (f.file_stem().unwrap().to_string_lossy().into_owned(), Scene::load(&f).expect("a valid scene")))
+        .collect()
+}
 
 /// Median seconds of `f` over `n` runs.
 pub fn median(n: usize, mut f: impl FnMut()) -> f64 {
