@@ -76,7 +76,7 @@ impl GuidanceConfig {
     /// The rounds `polish` takes when it is asked for.
     pub const POLISH_ROUNDS: usize = 60;
 
-    /// Only the named terms (`mot`, `bound`, `obj`, `all`, `none`), comma-separated.
+    /// Only the named terms (`mot`, `bound`, `obj`, `all`, `phys`, `polish`, `none`), comma-separated.
     pub fn parse(list: &str) -> Result<GuidanceConfig, String> {
         let mut cfg = GuidanceConfig { motion: 0.0, bound: 0.0, object: 0.0, ..Self::all() };
         let full = Self::all();
@@ -498,6 +498,10 @@ mod tests {
         let p = GuidanceConfig::parse("all,phys").unwrap();
         assert!(p.is_active() && p.phys > 0.0);
         assert!(!GuidanceConfig::parse("phys").unwrap().is_active());
+        // Polishing is off unless named, and the default command line names it.
+        assert_eq!(GuidanceConfig::parse("all").unwrap().polish, 0);
+        let d = GuidanceConfig::parse("all,polish").unwrap();
+        assert_eq!((d.polish, d.phys), (GuidanceConfig::POLISH_ROUNDS, 0.0));
     }
 }
 

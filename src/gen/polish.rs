@@ -1,19 +1,19 @@
-//! Polishing a generated layout (ours, after the last sampling step): a few rounds of small,
-//! exact geometric corrections that the model's few-centimetre imprecision leaves undone.
+//! Polishing a generated layout (ours, after the last sampling step): rounds of small, exact
+//! geometric corrections of what the model's few-centimetre imprecision leaves undone.
 //!
 //! Each contact box (sit, lie, touch) is given to an object that affords its action: best covered
-//! pairs first, then nearest within 2 m, a chair or stool holding one person, a sofa or bed one per
-//! 55 cm of its length, tables and cabinets any number of touches. That object grows by at most 15 cm in
-//! height and 20 cm in width or depth where the box is taller or wider, and every round moves it
-//! by the smallest shift that puts the box's footprint inside its own. Then overlapping objects are
-//! pushed apart by their footprints' minimum translation vector, objects standing on walking
-//! paths are pushed off them, and finally every footprint is moved inside the floor plan. Objects
-//! holding a contact move a fifth as much for overlaps and paths; a pair is separated along the
-//! shortest axis that keeps both inside the walls. Rounds stop when nothing moves
-//! more than a millimetre.
+//! pairs first, then nearest within 2 m; a chair or stool holds one person, a sofa or bed one per
+//! 55 cm of its length, tables and cabinets any number of touches. That object grows by at most
+//! 15 cm in height and 20 cm in width or depth where the box is taller or wider. Every round then
+//! (1) moves each holder by the smallest shift that puts its boxes' footprints inside its own and
+//! pushes pieces standing on walking paths off them, (2) separates overlapping pairs along the
+//! shortest separating axis that keeps both inside the walls, and (3) moves every footprint inside
+//! the floor plan (corners inside, and off an L-shaped room's inner corner). Holders move a fifth
+//! as much for overlaps and paths; the last third of the rounds leaves contacts alone and the last
+//! five paths, so the layout ends separated and inside. Rounds stop when nothing moves a millimetre.
 //!
-//! It does not add, remove or re-categorise objects, turn them, or resolve what it cannot reach by
-//! small moves (a wardrobe wider than the room stays as it is).
+//! It does not add, remove, re-categorise or turn objects, and what small moves cannot reach stays
+//! (a sitter whose chair was never generated, a wardrobe wider than its alcove).
 
 use crate::eval::contact_iou;
 use crate::geom::{OBox, Polygon, intersection_volume, iou_3d};
