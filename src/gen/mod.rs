@@ -8,6 +8,7 @@
 
 mod adamw;
 pub mod checkpoint;
+mod clearance;
 mod config;
 mod dataset;
 mod error;

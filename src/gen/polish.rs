@@ -6,7 +6,8 @@
 //! 55 cm of its length, tables and cabinets any number of touches. That object grows by at most
 //! 15 cm in height and 20 cm in width or depth where the box is taller or wider. Every round then
 //! (1) moves each holder by the smallest shift that puts its boxes' footprints inside its own and
-//! pushes pieces standing on walking paths off them, (2) separates overlapping pairs along the
+//! pushes pieces out of walking people's way (where footprint and height meet a walking or
+//! standing body, `Clearance`), (2) separates overlapping pairs along the
 //! shortest separating axis that keeps both inside the walls, and (3) moves every footprint inside
 //! the floor plan (corners inside, and off an L-shaped room's inner corner). Holders move a fifth
 //! as much for overlaps and paths; the last third of the rounds leaves contacts alone and the last
@@ -15,6 +16,7 @@
 //! It does not add, remove, re-categorise or turn objects, and what small moves cannot reach stays
 //! (a sitter whose chair was never generated, a wardrobe wider than its alcove).
 
+use super::clearance::Clearance;
 use crate::eval::contact_iou;
 use crate::geom::{OBox, Polygon, intersection_volume, iou_3d};
 use crate::human::Conditions;
@@ -48,6 +50,7 @@ pub struct PolishReport {
 /// Polishes `scene`'s objects in place with at most `rounds` rounds.
 pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
     let cond = Conditions::of(scene);
+    let clearance = Clearance::of(scene, &cond.window);
     let polygon = scene.floor_plan.polygon();
     let mut report = PolishReport::default();
     let start: Vec<DVec2> = scene.objects.iter().map(|o| DVec2::new(o.center[0], o.center[1])).collect();
@@ -71,8 +74,8 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
         }
         for (i, o) in scene.objects.iter_mut().enumerate() {
             let mut m = moves[i] / counts[i].max(1) as f64;
-            if !o.category.is_hanging() && round + 5 < rounds {
-                m += path_push(&o.obox(), &cond) * mobility[i];
+            if round + 5 < rounds {
+                m += path_push(&o.obox(), &clearance) * mobility[i];
             }
             shift(o, m.clamp_length_max(MAX_STEP));
         }
@@ -240,28 +243,17 @@ fn footprint_separations(a: &OBox, b: &OBox) -> Vec<DVec2> {
     out
 }
 
-/// A push of `b` off the walking humans' free space: away from the centroid of the free-space
-/// pixels its footprint covers, by their area over its longer side.
-fn path_push(b: &OBox, cond: &Conditions) -> DVec2 {
-    let w = &cond.window;
-    let (lo, hi) = b.footprint_aabb();
-    let (rows, cols) = w.pixel_ranges(lo, hi);
-    let (mut sum, mut n) = (DVec2::ZERO, 0usize);
-    for i in rows {
-        for j in cols.clone() {
-            let p = w.pixel_center(i, j);
-            if cond.free_space.get(i, j) && b.footprint_contains(p) {
-                sum += p;
-                n += 1;
-            }
-        }
-    }
-    if n == 0 {
+/// A push of `b` out of the walking people's way: away from the centroid of the pixels where it
+/// meets their bodies, by their area over its longer side.
+fn path_push(b: &OBox, clearance: &Clearance) -> DVec2 {
+    let blocked = clearance.blocked(b);
+    if blocked.is_empty() {
         return DVec2::ZERO;
     }
-    let away = b.center.truncate() - sum / n as f64;
-    let dir = away.try_normalize().unwrap_or(DVec2::X);
-    let depth = n as f64 * w.pixel_area() / b.size.x.max(b.size.y);
+    let w = clearance.window();
+    let centroid = blocked.iter().sum::<DVec2>() / blocked.len() as f64;
+    let dir = (b.center.truncate() - centroid).try_normalize().unwrap_or(DVec2::X);
+    let depth = blocked.len() as f64 * w.pixel_area() / b.size.x.max(b.size.y);
     dir * depth.clamp(w.pixel(), MAX_STEP)
 }
 
