@@ -176,9 +176,11 @@ fn assign_contacts(scene: &Scene, cond: &Conditions) -> Vec<(usize, usize)> {
         if held.iter().any(|(b, _)| *b == k) {
             continue;
         }
-        let places = held.iter().filter(|(b, j)| *j == i && iou_3d(&boxes[*b].obox, &boxes[k].obox) < 0.5).count();
-        let same_place = held.iter().any(|(b, j)| *j == i && iou_3d(&boxes[*b].obox, &boxes[k].obox) >= 0.5);
-        if same_place || places < capacity(&scene.objects[i]) {
+        // The boxes `i` already holds, by whether each is at the same place as box k.
+        let same: Vec<bool> =
+            held.iter().filter(|(_, j)| *j == i).map(|(b, _)| iou_3d(&boxes[*b].obox, &boxes[k].obox) >= 0.5).collect();
+        let places = same.iter().filter(|s| !**s).count();
+        if same.contains(&true) || places < capacity(&scene.objects[i]) {
             held.push((k, i));
         }
     }
@@ -292,9 +294,11 @@ fn inside_push(b: &OBox, polygon: &Polygon) -> DVec2 {
             }
         };
         for p in b.footprint().map(|p| p + total) {
-            let excess = polygon.signed_distance(p) + CLEARANCE;
+            let inside = polygon.contains(p);
+            let distance = polygon.distance_to_boundary(p);
+            let excess = if inside { CLEARANCE - distance } else { distance + CLEARANCE };
             let q = nearest_boundary_point(polygon, p);
-            let inward = if polygon.contains(p) { p - q } else { q - p };
+            let inward = if inside { p - q } else { q - p };
             consider(excess, inward.try_normalize().unwrap_or(DVec2::ZERO) * excess);
         }
         for &v in &polygon.points {
