@@ -207,9 +207,10 @@ pub fn soft_coverage(
         }
         let (cos, sin) = (o.yaw.cos(), o.yaw.sin());
         let (a, b) = (o.size.x * 0.5, o.size.y * 0.5);
-        let reach = a.hypot(b) + 4.0 * tau;
+        // The footprint's axis-aligned bounds grown by 4τ: pixels beyond are ignored anyway.
+        let reach = DVec2::new((a * cos).abs() + (b * sin).abs(), (a * sin).abs() + (b * cos).abs()) + 4.0 * tau;
         let c = o.center.truncate();
-        let (cols, rows) = window.pixel_ranges(c - DVec2::splat(reach), c + DVec2::splat(reach));
+        let (cols, rows) = window.pixel_ranges(c - reach, c + reach);
         for j in rows {
             for i in cols.clone() {
                 if !mask.get(i, j) {

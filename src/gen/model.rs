@@ -29,8 +29,8 @@ pub struct CondTensors {
 
 /// A PointNet: a shared per-point MLP followed by a max over the points.
 #[derive(Debug, Clone)]
-struct PointNet {
-    layers: [Linear; 3],
+pub(super) struct PointNet {
+    pub(super) layers: [Linear; 3],
 }
 
 impl PointNet {
@@ -53,12 +53,12 @@ impl PointNet {
 
 /// One DiT block with adaLN-Zero.
 #[derive(Debug, Clone)]
-struct Block {
-    modulation: Linear,
-    qkv: Linear,
-    proj: Linear,
-    fc1: Linear,
-    fc2: Linear,
+pub(super) struct Block {
+    pub(super) modulation: Linear,
+    pub(super) qkv: Linear,
+    pub(super) proj: Linear,
+    pub(super) fc1: Linear,
+    pub(super) fc2: Linear,
     heads: usize,
 }
 
@@ -114,16 +114,16 @@ fn modulate(x: &Tensor, shift: &Tensor, scale: &Tensor) -> Result<Tensor, GenErr
 /// The denoiser ε_θ(x_t, t, conditions).
 #[derive(Debug, Clone)]
 pub struct Denoiser {
-    cfg: ModelConfig,
-    input: Linear,
-    time: [Linear; 2],
-    contact: [Linear; 2],
-    contact_kind: Tensor,
-    floor: PointNet,
-    free: PointNet,
-    blocks: Vec<Block>,
-    final_modulation: Linear,
-    output: Linear,
+    pub(super) cfg: ModelConfig,
+    pub(super) input: Linear,
+    pub(super) time: [Linear; 2],
+    pub(super) contact: [Linear; 2],
+    pub(super) contact_kind: Tensor,
+    pub(super) floor: PointNet,
+    pub(super) free: PointNet,
+    pub(super) blocks: Vec<Block>,
+    pub(super) final_modulation: Linear,
+    pub(super) output: Linear,
 }
 
 impl Denoiser {
@@ -186,6 +186,11 @@ impl Denoiser {
 
 /// Sinusoidal features of the steps `t`: (B, TIME_FEATURES), half sines, half cosines.
 pub fn time_features(t: &[usize], device: &Device) -> Result<Tensor, GenError> {
+    Ok(Tensor::from_vec(time_feature_values(t), (t.len(), TIME_FEATURES), device)?)
+}
+
+/// The values of [`time_features`], row-major.
+pub(super) fn time_feature_values(t: &[usize]) -> Vec<f32> {
     let half = TIME_FEATURES / 2;
     let mut values = Vec::with_capacity(t.len() * TIME_FEATURES);
     for &step in t {
@@ -194,7 +199,7 @@ pub fn time_features(t: &[usize], device: &Device) -> Result<Tensor, GenError> {
         values.extend(angles.iter().map(|a| a.sin() as f32));
         values.extend(angles.iter().map(|a| a.cos() as f32));
     }
-    Ok(Tensor::from_vec(values, (t.len(), TIME_FEATURES), device)?)
+    values
 }
 
 #[cfg(test)]

@@ -143,6 +143,12 @@ impl Linear {
         *out.last_mut().expect("non-empty") = self.weight.dim(0)?;
         Ok(y.reshape(out)?)
     }
+
+    /// The weight (output × input, row-major) and bias as host vectors, with (output, input).
+    pub(super) fn host(&self) -> Result<(Vec<f32>, Vec<f32>, usize, usize), GenError> {
+        let (output, input) = self.weight.dims2()?;
+        Ok((self.weight.flatten_all()?.to_vec1()?, self.bias.flatten_all()?.to_vec1()?, output, input))
+    }
 }
 
 /// Layer norm over the last dimension without a learned affine (adaLN provides it), built from

@@ -2,11 +2,12 @@
 //! predicted noise, clamped to [-1, 1]) may be replaced by a guided x̃0 before the posterior mean
 //! is formed (DESIGN.md, "Guidance at step t").
 //!
-//! Noise comes from the crate's seeded generator, one stream per batch item, so item i of a seed is
-//! the same whether it is sampled alone or in a batch.
+//! Noise comes from the crate's seeded generator, one stream per batch item, and the denoiser runs
+//! as [`FastDenoiser`] (conditions encoded once, each item on its own), so item i of a seed is the
+//! same whether it is sampled alone or in a batch.
 
 use super::model::CondTensors;
-use super::{Denoiser, GenError, Schedule};
+use super::{Denoiser, FastDenoiser, GenError, Schedule};
 use crate::data::Rng;
 use candle_core::{Device, Tensor};
 
@@ -40,10 +41,11 @@ pub fn sample(
         }
         Ok(Tensor::from_vec(v, shape, &Device::Cpu)?)
     };
+    let fast = FastDenoiser::of(model)?;
+    let mut prepared = fast.prepare(cond)?;
     let mut x = gaussian(&mut rngs)?;
     for t in (0..schedule.steps()).rev() {
-        // Detached so that nothing (a trainable model, a guidance gradient) chains the steps' graphs.
-        let eps = model.forward(&x, &vec![t; b], cond)?.detach();
+        let eps = Tensor::from_vec(fast.forward(&mut prepared, &x.flatten_all()?.to_vec1()?, t), shape, &Device::Cpu)?;
         let ab = schedule.alpha_bars[t];
         let x0 = ((&x - (eps * (1.0 - ab).sqrt())?)? / ab.sqrt())?.clamp(-1f32, 1f32)?;
         let x0 = match guidance.as_deref_mut() {
@@ -52,6 +54,7 @@ pub fn sample(
         };
         let (c0, ct, var) = schedule.posterior(t);
         let mean = ((x0 * c0)? + (&x * ct)?)?;
+        // Detached so that nothing (a guidance gradient) chains the steps' graphs.
         x = if t > 0 { (mean + (gaussian(&mut rngs)? * var.sqrt())?)? } else { mean }.detach();
     }
     Ok(x.flatten_all()?.to_vec1::<f32>()?)
