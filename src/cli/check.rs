@@ -5,13 +5,12 @@
 
 use super::output::{print_json, print_text};
 use super::{ExitStatus, GlobalArgs};
-use anyhow::Context;
 use clap::Args;
 use rayon::prelude::*;
 use serde::Serialize;
 use shade_sim::scene::Scene;
 use shade_sim::sim::{CheckConfig, CheckReport, ViolationKind, check_scene};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 #[derive(Debug, Args)]
 pub struct CheckArgs {
@@ -33,25 +32,6 @@ struct FileReport {
     report: CheckReport,
 }
 
-fn collect(path: &Path, out: &mut Vec<PathBuf>) -> anyhow::Result<()> {
-    if path.is_dir() {
-        let mut entries: Vec<PathBuf> = std::fs::read_dir(path)
-            .with_context(|| format!("{}: cannot read folder", path.display()))?
-            .filter_map(|e| e.ok().map(|e| e.path()))
-            .collect();
-        entries.sort();
-        for p in entries {
-            let skip = p.file_name().is_some_and(|n| n == "stats.json" || n == "calibration.json");
-            if p.is_dir() || (p.extension().is_some_and(|e| e == "json") && !skip) {
-                collect(&p, out)?;
-            }
-        }
-    } else {
-        out.push(path.to_path_buf());
-    }
-    Ok(())
-}
-
 pub fn run(args: &CheckArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     anyhow::ensure!(
         args.tolerance.is_finite() && args.tolerance >= 0.0,
@@ -59,7 +39,7 @@ pub fn run(args: &CheckArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     );
     let mut files = Vec::new();
     for p in &args.paths {
-        collect(p, &mut files)?;
+        if p.is_dir() { files.extend(super::eval::scene_files(p)?) } else { files.push(p.clone()) }
     }
     let cfg = CheckConfig { tolerance: args.tolerance, stability: !args.no_stability, ..CheckConfig::default() };
     let bar = super::progress::bar(global, files.len() as u64, "check");

@@ -29,6 +29,8 @@ struct FileReport {
     file: String,
     rounds: usize,
     resized: usize,
+    turned: usize,
+    added: usize,
     max_move: f64,
 }
 
@@ -48,6 +50,8 @@ pub fn run(args: &PolishArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus>
                 file: out.display().to_string(),
                 rounds: r.rounds,
                 resized: r.resized,
+                turned: r.turned,
+                added: r.added,
                 max_move: r.max_move,
             })
         })
@@ -58,10 +62,11 @@ pub fn run(args: &PolishArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus>
         let moved = reports.iter().filter(|r| r.max_move > 1e-3).count();
         let largest = reports.iter().map(|r| r.max_move).fold(0.0, f64::max);
         print_text(&format!(
-            "{} scenes polished into {}: {moved} changed, largest move {largest:.3} m, {} objects resized\n",
+            "{} scenes polished into {}: {moved} changed, largest move {largest:.3} m, {} objects resized, {} added\n",
             reports.len(),
             args.out.display(),
-            reports.iter().map(|r| r.resized).sum::<usize>()
+            reports.iter().map(|r| r.resized).sum::<usize>(),
+            reports.iter().map(|r| r.added).sum::<usize>()
         ))?;
     }
     Ok(ExitStatus::Success)

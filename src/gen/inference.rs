@@ -157,7 +157,8 @@ impl FastDenoiser {
         let pointnet = |p: &super::model::PointNet| -> Result<[Dense; 3], GenError> {
             Ok([Dense::of(&p.layers[0])?, Dense::of(&p.layers[1])?, Dense::of(&p.layers[2])?])
         };
-        let mut modulations: Vec<Dense> = model.blocks.iter().map(|b| Dense::of(&b.modulation)).collect::<Result<_, _>>()?;
+        let mut modulations: Vec<Dense> =
+            model.blocks.iter().map(|b| Dense::of(&b.modulation)).collect::<Result<_, _>>()?;
         modulations.push(Dense::of(&model.final_modulation)?);
         Ok(FastDenoiser {
             cfg: model.cfg.clone(),
@@ -200,7 +201,12 @@ impl FastDenoiser {
         let items = (0..b)
             .into_par_iter()
             .map(|item| {
-                self.prepare_item(&slice(&contacts, item), &mask[item * k..(item + 1) * k], &slice(&floor, item), &slice(&free, item))
+                self.prepare_item(
+                    &slice(&contacts, item),
+                    &mask[item * k..(item + 1) * k],
+                    &slice(&floor, item),
+                    &slice(&free, item),
+                )
             })
             .collect();
         Ok(PreparedBatch { items })
@@ -261,14 +267,16 @@ impl FastDenoiser {
         let time = self.time[1].map(&time);
 
         let mut out = vec![0f32; b * per_item];
-        batch.items.par_iter_mut().zip(out.par_chunks_exact_mut(per_item)).enumerate().for_each(|(item, (buf, eps))| {
-            for (i, c) in buf.c.iter_mut().enumerate() {
-                *c = time[i] + buf.pooled[i] + buf.floor[i] + buf.free[i];
-            }
-            silu(&mut buf.c);
-            self.modulation.apply(&buf.c, &mut buf.modulation);
-            self.item_forward(buf, &x[item * per_item..(item + 1) * per_item], eps);
-        });
+        batch.items.par_iter_mut().zip(out.par_chunks_exact_mut(per_item)).enumerate().for_each(
+            |(item, (buf, eps))| {
+                for (i, c) in buf.c.iter_mut().enumerate() {
+                    *c = time[i] + buf.pooled[i] + buf.floor[i] + buf.free[i];
+                }
+                silu(&mut buf.c);
+                self.modulation.apply(&buf.c, &mut buf.modulation);
+                self.item_forward(buf, &x[item * per_item..(item + 1) * per_item], eps);
+            },
+        );
         out
     }
 

@@ -1,0 +1,259 @@
+//! Completing a layout's supports (ours, part of polishing): a person who sits, lies or touches
+//! where no generated object can hold them gets a piece of real furniture placed the way the
+//! calibrated data places one under such a person.
+//!
+//! - A sitter gets a seat of the category the room already seats people on (else a chair, an
+//!   armchair or a dining chair for bedrooms, living and dining rooms), facing like the sitter, its
+//!   seat at the height of the sitter's support box and the box 3 cm in front of the backrest.
+//! - A sleeper gets a bed along the body (bedrooms) or a sofa with the body along its seat (living
+//!   and dining rooms), the mattress or seat at the box's bottom.
+//! - A toucher gets a piece in front of them, the pressed volume just inside its front face: a
+//!   cabinet (nightstand in bedrooms) with its top just above that volume for a palm below 1 m, a
+//!   wardrobe (bookshelf outside bedrooms) above.
+//!
+//! Sizes are the median of the category's real pieces (the furniture catalog), widened or deepened to
+//! cover the box and stretched in height to meet it. Nothing is added beyond the room type's object
+//! limit. This module only makes the objects; polishing moves them with the rest.
+
+use crate::furniture::{catalog_items, template_of};
+use crate::geom::OBox;
+use crate::human::ContactBox;
+use crate::scene::{Action, Category, Group, Object, RoomType, Scene};
+use glam::{DVec2, DVec3};
+use std::f64::consts::{FRAC_PI_2, PI};
+
+/// Gap between a sitter's support box and the backrest (m).
+const BACK_GAP: f64 = 0.03;
+/// Margin around a box in the width of a new piece (m).
+const SIDE_MARGIN: f64 = 0.04;
+/// Highest palm that touches a top rather than a front face (m).
+const TOP_TOUCH_HEIGHT: f64 = 1.0;
+
+/// A new object that holds `contact` in `scene`, or `None` where the room type has no piece for it.
+pub fn support_for(scene: &Scene, contact: &ContactBox) -> Option<Object> {
+    let category = category_for(scene, contact)?;
+    let b = &contact.obox;
+    // Sit and lie boxes are the support volume under the body: the surface goes at their top.
+    let top = b.z_range().1;
+    let [w, d, h] = median_size(category);
+    let (size, yaw, box_at) = match (contact.action, category.group()) {
+        (Action::Sit, _) => {
+            let mut size = [w.max(b.size.x + SIDE_MARGIN), d, h];
+            size[2] = height_for_surface(category, size, top);
+            let surface = template_of(category, &boxed(size)).surface?;
+            // Wide enough between the arms, deep enough for the box in front of the backrest.
+            size[0] += (b.size.x + SIDE_MARGIN - surface.extent().x).max(0.0);
+            size[1] += (surface.min.y + BACK_GAP + b.size.y + SIDE_MARGIN - surface.max.y).max(0.0);
+            let surface = template_of(category, &boxed(size)).surface?;
+            // Facing like the sitter, the box's back edge BACK_GAP in front of the backrest.
+            (size, b.yaw, DVec2::new(0.0, surface.min.y + BACK_GAP + b.size.y * 0.5))
+        }
+        (Action::Lie, Group::Sofa) => {
+            // Along the seat (the body along the sofa's local x), as the data lays people on sofas.
+            let mut size = [w.max(b.size.y + 2.0 * SIDE_MARGIN), d, h];
+            size[2] = height_for_surface(category, size, top);
+            let surface = template_of(category, &boxed(size)).surface?;
+            size[1] += (b.size.x + SIDE_MARGIN - surface.extent().y).max(0.0);
+            let surface = template_of(category, &boxed(size)).surface?;
+            (size, b.yaw + FRAC_PI_2, (surface.min + surface.max) * 0.5)
+        }
+        (Action::Lie, _) => {
+            let mut size = [w.max(b.size.x + 2.0 * SIDE_MARGIN), d.max(b.size.y + 2.0 * SIDE_MARGIN), h];
+            size[2] = height_for_surface(category, size, top);
+            (size, b.yaw, DVec2::ZERO)
+        }
+        (Action::Touch, _) => {
+            // The pressed volume inside, just behind the front face (local +y, towards the person),
+            // under the top for a low palm.
+            let height = if b.center.z <= TOP_TOUCH_HEIGHT { top + 0.01 } else { h.max(top + 0.2) };
+            let inset = b.size.y * 0.5 + 0.02;
+            ([w.max(b.size.x + 2.0 * SIDE_MARGIN), d, height], b.yaw + PI, DVec2::new(0.0, d * 0.5 - inset))
+        }
+        (Action::Walk | Action::Stand, _) => return None,
+    };
+    // The piece's centre puts the box at `box_at` in the piece's frame.
+    let (sin, cos) = yaw.sin_cos();
+    let offset = DVec2::new(cos * box_at.x - sin * box_at.y, sin * box_at.x + cos * box_at.y);
+    let center = b.center.truncate() - offset;
+    Some(Object { id: free_id(scene), category, center: [center.x, center.y, size[2] * 0.5], size, yaw: wrap(yaw) })
+}
+
+/// An angle in (−π, π].
+fn wrap(a: f64) -> f64 {
+    let w = a.rem_euclid(2.0 * PI);
+    if w > PI { w - 2.0 * PI } else { w }
+}
+
+/// The category of the piece that holds `contact` in `scene`'s room type.
+fn category_for(scene: &Scene, contact: &ContactBox) -> Option<Category> {
+    let room = scene.room_type;
+    let present = |groups: &[Group]| {
+        // The most common category of those groups in the scene (first in category order on ties).
+        let mut best: Option<(usize, Category)> = None;
+        for &c in room.categories() {
+            let n = scene.objects.iter().filter(|o| o.category == c).count();
+            if n > 0 && groups.contains(&c.group()) && best.is_none_or(|(m, _)| n > m) {
+                best = Some((n, c));
+            }
+        }
+        best.map(|(_, c)| c)
+    };
+    let chosen = match contact.action {
+        Action::Sit => present(&[Group::Chair, Group::Stool]).unwrap_or(match room {
+            RoomType::Bedroom => Category::Chair,
+            RoomType::Living => Category::Armchair,
+            RoomType::Dining => Category::DiningChair,
+        }),
+        Action::Lie => match room {
+            RoomType::Bedroom => present(&[Group::Bed]).unwrap_or(Category::DoubleBed),
+            RoomType::Living | RoomType::Dining => present(&[Group::Sofa]).unwrap_or(Category::MultiSeatSofa),
+        },
+        Action::Touch if contact.obox.center.z <= TOP_TOUCH_HEIGHT => match room {
+            RoomType::Bedroom => Category::Nightstand,
+            RoomType::Living | RoomType::Dining => Category::Cabinet,
+        },
+        Action::Touch => match room {
+            RoomType::Bedroom => Category::Wardrobe,
+            RoomType::Living | RoomType::Dining => Category::Bookshelf,
+        },
+        Action::Walk | Action::Stand => return None,
+    };
+    (room.categories().contains(&chosen) && chosen.affords(contact.action)).then_some(chosen)
+}
+
+/// The median width, depth and height of the category's real pieces.
+fn median_size(category: Category) -> [f64; 3] {
+    let items = catalog_items(category);
+    std::array::from_fn(|k| {
+        let mut v: Vec<f64> = items.iter().map(|i| i.size[k]).collect();
+        v.sort_by(f64::total_cmp);
+        v.get(v.len() / 2).copied().unwrap_or(0.5)
+    })
+}
+
+/// The height (near `size[2]`) at which the category's sitting or lying surface is at `target`.
+fn height_for_surface(category: Category, size: [f64; 3], target: f64) -> f64 {
+    let (lo, hi) = (size[2] * 0.6, size[2] * 1.5);
+    let mut h = size[2];
+    for _ in 0..6 {
+        let Some(s) = template_of(category, &boxed([size[0], size[1], h])).surface else { break };
+        if s.height <= 1e-6 {
+            break;
+        }
+        h = (h * target / s.height).clamp(lo, hi);
+    }
+    h
+}
+
+/// A box of `size` standing at the origin, unturned.
+fn boxed(size: [f64; 3]) -> OBox {
+    OBox::new(DVec3::new(0.0, 0.0, size[2] * 0.5), DVec3::from(size), 0.0)
+}
+
+/// The first id `o<k>` the scene does not use.
+fn free_id(scene: &Scene) -> String {
+    (scene.objects.len()..).map(|k| format!("o{k}")).find(|id| scene.objects.iter().all(|o| &o.id != id)).expect("ids")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::data::generate_room;
+    use crate::eval::contact_iou;
+    use crate::generator::polish_scene;
+    use crate::human::Conditions;
+
+    /// Synthetic rooms with a person doing `action`, and the index of the object under them.
+    fn rooms_with(room: RoomType, action: Action, groups: &[Group]) -> Vec<(Scene, ContactBox, usize)> {
+        let mut found = Vec::new();
+        for index in 0..80 {
+            let scene = generate_room(room, 11, index, false).scene;
+            for b in Conditions::contact_boxes_of(&scene).into_iter().filter(|b| b.action == action) {
+                let holder = (0..scene.objects.len()).find(|&i| {
+                    groups.contains(&scene.objects[i].category.group())
+                        && contact_iou(&b.obox, std::slice::from_ref(&scene.objects[i])) > 0.9
+                });
+                if let Some(i) = holder {
+                    found.push((scene.clone(), b, i));
+                    break;
+                }
+            }
+            if found.len() == 3 {
+                break;
+            }
+        }
+        assert_eq!(found.len(), 3, "{room} {action:?}");
+        found
+    }
+
+    fn turn_distance(a: f64, b: f64, period: f64) -> f64 {
+        let d = (a - b).rem_euclid(period);
+        d.min(period - d)
+    }
+
+    #[test]
+    fn a_new_piece_holds_the_person_like_the_piece_it_replaces() {
+        let cases = [
+            (RoomType::Dining, Action::Sit, vec![Group::Chair, Group::Stool], 2.0 * PI),
+            (RoomType::Bedroom, Action::Lie, vec![Group::Bed], PI),
+            (RoomType::Bedroom, Action::Touch, vec![Group::Cabinet, Group::Shelf, Group::Table], 2.0 * PI),
+        ];
+        for (room, action, groups, period) in cases {
+            for (mut scene, contact, i) in rooms_with(room, action, &groups) {
+                let removed = scene.objects.remove(i);
+                let new = support_for(&scene, &contact).unwrap();
+                assert!(new.category.affords(action) && room.categories().contains(&new.category), "{new:?}");
+                let cover = contact_iou(&contact.obox, std::slice::from_ref(&new));
+                assert!(cover > 0.95, "{room} {action:?}: covers {cover}");
+                assert!(scene.objects.iter().all(|o| o.id != new.id), "a fresh id");
+                if action != Action::Touch {
+                    // Turned like the piece it replaces (seats face their sitter, beds lie along
+                    // the sleeper) and standing on the floor.
+                    let d = turn_distance(new.yaw, removed.yaw, period);
+                    assert!(d < 0.2, "{room} {action:?}: yaw {} vs {}", new.yaw, removed.yaw);
+                }
+                assert!((new.center[2] - new.size[2] * 0.5).abs() < 1e-12);
+                if action == Action::Sit {
+                    // The seat is at the top of the sitter's support volume (within 2 cm).
+                    let seat = template_of(new.category, &new.obox()).surface.unwrap().height;
+                    assert!((seat - contact.obox.z_range().1).abs() < 0.02, "seat {seat}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn polishing_seats_every_sitter_of_a_room_without_seats_and_adds_nothing_to_a_complete_one() {
+        for (mut scene, _, _) in rooms_with(RoomType::Dining, Action::Sit, &[Group::Chair]) {
+            assert_eq!(polish_scene(&mut scene.clone(), 30).added, 0);
+            scene.objects.retain(|o| !matches!(o.category.group(), Group::Chair | Group::Stool | Group::Sofa));
+            let sits: Vec<ContactBox> =
+                Conditions::contact_boxes_of(&scene).into_iter().filter(|b| b.action == Action::Sit).collect();
+            assert!(sits.iter().all(|b| contact_iou(&b.obox, &scene.objects) < 0.5));
+            let before = scene.objects.len();
+            let report = polish_scene(&mut scene, 30);
+            assert!(report.added >= 1 && report.added <= sits.len(), "{report:?}");
+            assert_eq!(scene.objects.len(), before + report.added);
+            for b in &sits {
+                assert!(contact_iou(&b.obox, &scene.objects) > 0.9, "{}", contact_iou(&b.obox, &scene.objects));
+            }
+        }
+    }
+
+    #[test]
+    fn sleepers_on_sofas_get_a_sofa_along_them() {
+        let contact = ContactBox {
+            human: "h0".into(),
+            action: Action::Lie,
+            frames: [0, 1],
+            obox: OBox::new(DVec3::new(1.0, 2.0, 0.55), DVec3::new(0.5, 1.7, 0.25), 0.3),
+        };
+        let mut scene = generate_room(RoomType::Living, 1, 0, false).scene;
+        scene.objects.clear();
+        let sofa = support_for(&scene, &contact).unwrap();
+        assert_eq!(sofa.category, Category::MultiSeatSofa);
+        // Its length (local x) runs along the body (the box's local y).
+        assert!(turn_distance(sofa.yaw, 0.3 + FRAC_PI_2, 2.0 * PI) < 1e-9);
+        assert!(sofa.size[0] >= 1.7 && contact_iou(&contact.obox, &[sofa]) > 0.95);
+    }
+}
