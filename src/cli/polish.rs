@@ -31,6 +31,9 @@ struct FileReport {
     resized: usize,
     turned: usize,
     added: usize,
+    squared: usize,
+    narrowed: usize,
+    removed: usize,
     max_move: f64,
 }
 
@@ -52,6 +55,9 @@ pub fn run(args: &PolishArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus>
                 resized: r.resized,
                 turned: r.turned,
                 added: r.added,
+                squared: r.squared,
+                narrowed: r.narrowed,
+                removed: r.removed,
                 max_move: r.max_move,
             })
         })
@@ -62,11 +68,14 @@ pub fn run(args: &PolishArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus>
         let moved = reports.iter().filter(|r| r.max_move > 1e-3).count();
         let largest = reports.iter().map(|r| r.max_move).fold(0.0, f64::max);
         print_text(&format!(
-            "{} scenes polished into {}: {moved} changed, largest move {largest:.3} m, {} objects resized, {} added\n",
+            "{} scenes polished into {}: {moved} changed, largest move {largest:.3} m; objects: {} resized, {} added, \
+             {} narrowed, {} removed\n",
             reports.len(),
             args.out.display(),
             reports.iter().map(|r| r.resized).sum::<usize>(),
-            reports.iter().map(|r| r.added).sum::<usize>()
+            reports.iter().map(|r| r.added).sum::<usize>(),
+            reports.iter().map(|r| r.narrowed).sum::<usize>(),
+            reports.iter().map(|r| r.removed).sum::<usize>()
         ))?;
     }
     Ok(ExitStatus::Success)

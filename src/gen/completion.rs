@@ -132,7 +132,7 @@ fn median_size(category: Category) -> [f64; 3] {
 }
 
 /// The height (near `size[2]`) at which the category's sitting or lying surface is at `target`.
-fn height_for_surface(category: Category, size: [f64; 3], target: f64) -> f64 {
+pub(super) fn height_for_surface(category: Category, size: [f64; 3], target: f64) -> f64 {
     let (lo, hi) = (size[2] * 0.6, size[2] * 1.5);
     let mut h = size[2];
     for _ in 0..6 {

@@ -5,24 +5,32 @@
 //! pairs first, then nearest within 2 m; a chair or stool holds one person, a sofa or bed one per
 //! 55 cm of its length, tables and cabinets any number of touches. A box no object can hold gets a
 //! new piece of real furniture (`completion`). A chair, stool or sofa is turned to face like the
-//! first sitter it holds (its front the way they face), a sofa to lie along its sleeper. The holder
-//! grows by at most 15 cm in height and 20 cm in width or depth where the box is taller or wider.
-//! Every round then (1) moves each holder by the smallest shift that puts its boxes' footprints
-//! inside its own and pushes pieces out of walking people's way (where footprint and height meet a
+//! first sitter it holds (its front the way they face), a sofa to lie along its sleeper. A seat's or
+//! bed's surface goes to the top of its person's support volume, other holders grow to the top of
+//! their box (at most 15 cm either way), and width and depth grow by at most 20 cm where the box
+//! needs it. Every round then (1) moves each holder by the smallest shift that puts its boxes'
+//! footprints on the part they must be on (a seat's surface clear of its backrest, a mattress, else
+//! the footprint) and pushes pieces out of walking people's way (where footprint and height meet a
 //! walking or standing body, `Clearance`), (2) separates overlapping pairs along the shortest
 //! separating axis that keeps both inside the walls, and (3) moves every footprint inside the floor
 //! plan (corners inside, and off an L-shaped room's inner corner). Holders move a fifth as much for
 //! overlaps and paths; the last third of the rounds leaves contacts alone and the last five paths,
 //! so the layout ends separated and inside. Rounds stop when nothing moves a millimetre. A box
-//! still less than half covered after that gets a new piece and a second pass of rounds.
+//! still less than half covered after that gets a new piece and a second pass of rounds. A piece
+//! still poking out of the floor plan is then turned square to the walls or narrowed by at most
+//! 10 cm, and overlaps that survive are narrowed away or lose their smaller piece (`overlaps`;
+//! never a piece that holds a person).
 //!
-//! It never removes or re-categorises objects, adds only within the room type's object limit, and
-//! turns only seats and sofas.
+//! It never re-categorises objects, adds only within the room type's object limit, and turns only
+//! seats and sofas.
 
 use super::clearance::Clearance;
-use super::completion::support_for;
+use super::completion::{height_for_surface, support_for};
+use super::inside::{CLEARANCE, fits_inside, inside_push, worst_offence};
+use super::overlaps::{narrow_by, resolve_overlaps};
 use crate::eval::contact_iou;
-use crate::geom::{OBox, Polygon, intersection_volume, iou_3d};
+use crate::furniture::template;
+use crate::geom::{OBox, intersection_volume, iou_3d};
 use crate::human::{Conditions, ContactBox};
 use crate::scene::{Action, Group, Object, Scene};
 use glam::DVec2;
@@ -35,8 +43,6 @@ const MAX_GROW_EXTENT: f64 = 0.2;
 const MAX_ASSIGN_DISTANCE: f64 = 2.0;
 /// Largest move of one round (m).
 const MAX_STEP: f64 = 0.3;
-/// Clearance kept from walls and between pushed-apart objects (m).
-const CLEARANCE: f64 = 0.005;
 /// Share of a move taken by an object that holds a contact.
 const ANCHORED_MOBILITY: f64 = 0.2;
 
@@ -51,6 +57,12 @@ pub struct PolishReport {
     pub turned: usize,
     /// Objects added for people nothing held (`completion`).
     pub added: usize,
+    /// Pieces left poking out of the floor plan turned square to the walls.
+    pub squared: usize,
+    /// Objects narrowed out of an overlap (`overlaps`).
+    pub narrowed: usize,
+    /// Objects removed from an overlap nothing else undid (`overlaps`).
+    pub removed: usize,
     /// Largest total move of one object (m).
     pub max_move: f64,
 }
@@ -66,8 +78,9 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
     let clearance = Clearance::of(scene, &cond.window);
     let mut report = PolishReport::default();
     let start: Vec<DVec2> = scene.objects.iter().map(|o| DVec2::new(o.center[0], o.center[1])).collect();
+    let mut holders = Vec::new();
     for pass in 0..2 {
-        let mut holders = assign_contacts(scene, &cond);
+        holders = assign_contacts(scene, &cond);
         let missing: Vec<usize> = (0..cond.contact_boxes.len())
             .filter(|k| match pass {
                 0 => !holders.iter().any(|(b, _)| b == k),
@@ -87,6 +100,10 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
         .zip(&start)
         .map(|(o, s)| DVec2::new(o.center[0], o.center[1]).distance(*s))
         .fold(0.0, f64::max);
+    report.squared = square_up(scene, &cond, &holders);
+    let holds: Vec<bool> = (0..scene.objects.len()).map(|i| holders.iter().any(|(_, h)| *h == i)).collect();
+    let overlaps = resolve_overlaps(scene, &holds);
+    (report.narrowed, report.removed) = (overlaps.narrowed, overlaps.removed);
     report
 }
 
@@ -107,7 +124,7 @@ fn polish_rounds(
             scene.objects[*i].yaw = yaw;
             turned[*i] = true;
         }
-        report.resized += fit_size(&mut scene.objects[*i], &contact.obox) as usize;
+        report.resized += fit_size(&mut scene.objects[*i], contact) as usize;
     }
     report.turned += turned.iter().filter(|t| **t).count();
     let mobility: Vec<f64> = (0..scene.objects.len())
@@ -120,16 +137,17 @@ fn polish_rounds(
         let mut counts = vec![0usize; scene.objects.len()];
         if round * 3 < rounds * 2 {
             for (b, i) in holders {
-                moves[*i] += containment_shift(&cond.contact_boxes[*b].obox, &scene.objects[*i].obox());
+                moves[*i] += containment_shift(&cond.contact_boxes[*b], &scene.objects[*i]);
                 counts[*i] += 1;
             }
         }
         for (i, o) in scene.objects.iter_mut().enumerate() {
-            let mut m = moves[i] / counts[i].max(1) as f64;
+            shift(o, (moves[i] / counts[i].max(1) as f64).clamp_length_max(MAX_STEP));
             if round + 5 < rounds {
-                m += path_push(&o.obox(), clearance) * mobility[i];
+                // A holder gives way to walkers only as far as its people stay on it.
+                let push = within_slack(o, &held_by(holders, cond, i), path_push(&o.obox(), clearance));
+                shift(o, push.clamp_length_max(MAX_STEP));
             }
-            shift(o, m.clamp_length_max(MAX_STEP));
         }
         for i in 0..scene.objects.len() {
             for j in i + 1..scene.objects.len() {
@@ -166,6 +184,60 @@ fn polish_rounds(
             break;
         }
     }
+}
+
+/// Turns every piece the rounds left poking out of the floor plan square to the walls (the yaw
+/// nearest its own among the longest wall's direction plus quarter turns), moves it back over the
+/// contact boxes it holds and inside; keeps the turn only if the piece then fits, else narrows the
+/// unturned piece by what sticks out (at most 10 cm and a quarter of its size) if that makes it fit.
+/// Returns how many pieces were turned. (A diagonal bed 1.3 m × 2 m needs 2.3 m of width; square,
+/// 1.3 m.)
+fn square_up(scene: &mut Scene, cond: &Conditions, holders: &[(usize, usize)]) -> usize {
+    let polygon = scene.floor_plan.polygon();
+    let Some((a, b)) = polygon.edges().max_by(|x, y| (x.1 - x.0).length().total_cmp(&(y.1 - y.0).length())) else {
+        return 0;
+    };
+    let wall = (b - a).to_angle();
+    let quarter = std::f64::consts::FRAC_PI_2;
+    let mut turned = 0;
+    for i in 0..scene.objects.len() {
+        if fits_inside(&scene.objects[i].obox(), &polygon) {
+            continue;
+        }
+        let before = scene.objects[i].clone();
+        let o = &mut scene.objects[i];
+        o.yaw = wall + ((o.yaw - wall) / quarter).round() * quarter;
+        let held = held_by(holders, cond, i);
+        if !held.is_empty() {
+            let m = held.iter().map(|b| containment_shift(b, o)).sum::<DVec2>() / held.len() as f64;
+            shift(o, m);
+        }
+        let w = inside_push(&o.obox(), &polygon);
+        shift(o, w);
+        if fits_inside(&o.obox(), &polygon) {
+            turned += 1;
+            continue;
+        }
+        // A piece a few centimetres too big for its place (square or not) is narrowed to fit.
+        *o = before;
+        let mut narrowed = o.clone();
+        for _ in 0..3 {
+            match worst_offence(&narrowed.obox(), &polygon) {
+                None => {
+                    *o = narrowed;
+                    break;
+                }
+                Some((_, push)) if narrow_by(&mut narrowed, push) => {}
+                Some(_) => break,
+            }
+        }
+    }
+    turned
+}
+
+/// The contact boxes object `i` holds.
+fn held_by<'a>(holders: &[(usize, usize)], cond: &'a Conditions, i: usize) -> Vec<&'a ContactBox> {
+    holders.iter().filter(|(_, h)| *h == i).map(|(b, _)| &cond.contact_boxes[*b]).collect()
 }
 
 fn shift(o: &mut Object, m: DVec2) {
@@ -264,26 +336,50 @@ fn facing_yaw(o: &Object, contact: &ContactBox) -> Option<f64> {
     }
 }
 
-/// Grows a floor-standing object that is a little too low, narrow or shallow for `contact`.
-/// Returns whether it changed.
-fn fit_size(o: &mut Object, contact: &OBox) -> bool {
+/// Fits a floor-standing object to `contact`: a seat's or bed's surface goes to the top of a sitter's
+/// or sleeper's support volume (up or down), anything else grows to the top of the box; width and
+/// depth grow until the box fits the part it must be on ([`holding_region`]). Changes of at most
+/// 15 cm in height and 20 cm in width or depth. Returns whether it changed.
+fn fit_size(o: &mut Object, contact: &ContactBox) -> bool {
     if o.category.is_hanging() {
         return false;
     }
     let before = o.size;
-    let top = contact.z_range().1;
-    if top > o.size[2] && top - o.size[2] <= MAX_GROW_HEIGHT {
-        o.size[2] = top;
-        o.center[2] = top * 0.5;
+    let top = contact.obox.z_range().1;
+    let surface = template(o).surface.filter(|_| matches!(contact.action, Action::Sit | Action::Lie));
+    let height = match surface {
+        Some(_) => height_for_surface(o.category, o.size, top),
+        None => o.size[2].max(top),
+    };
+    if (height - o.size[2]).abs() <= MAX_GROW_HEIGHT {
+        o.size[2] = height;
+        o.center[2] = height * 0.5;
     }
-    let (lo, hi) = local_extent(contact, &o.obox());
+    let (lo, hi) = local_extent(&contact.obox, &o.obox());
+    let (region_lo, region_hi) = holding_region(o, contact.action);
     for k in 0..2 {
-        let need = hi[k] - lo[k];
+        let need = (hi[k] - lo[k]) + (o.size[k] - (region_hi[k] - region_lo[k]));
         if need > o.size[k] && need - o.size[k] <= MAX_GROW_EXTENT {
             o.size[k] = need;
         }
     }
     o.size != before
+}
+
+/// Clearance between a sitter's support volume and the backrest (m).
+const BACK_GAP: f64 = 0.03;
+
+/// The part of `o`'s footprint (local min, max corners) a person doing `action` must be on: a
+/// seat's or bed's surface for sitting and lying (3 cm clear of a chair's or sofa's backrest), the
+/// whole footprint otherwise.
+fn holding_region(o: &Object, action: Action) -> (DVec2, DVec2) {
+    let half = DVec2::new(o.size[0], o.size[1]) * 0.5;
+    let Some(surface) = template(o).surface.filter(|_| matches!(action, Action::Sit | Action::Lie)) else {
+        return (-half, half);
+    };
+    let backed = action == Action::Sit && matches!(o.category.group(), Group::Chair | Group::Sofa);
+    let gap = if backed { BACK_GAP } else { 0.0 };
+    (surface.min + DVec2::new(0.0, gap), surface.max)
 }
 
 /// The contact box's footprint corners in `o`'s frame: (min, max) per axis.
@@ -294,24 +390,46 @@ fn local_extent(contact: &OBox, o: &OBox) -> (DVec2, DVec2) {
     (lo, hi)
 }
 
-/// The smallest move of `o` (world, m) that puts `contact`'s footprint inside its footprint (or
-/// centres it where it cannot fit).
-fn containment_shift(contact: &OBox, o: &OBox) -> DVec2 {
-    let (lo, hi) = local_extent(contact, o);
-    let half = o.half().truncate();
+/// The smallest move of `o` (world, m) that puts `contact`'s footprint inside the part of `o` it
+/// must be on ([`holding_region`]), or centres it there where it cannot fit.
+fn containment_shift(contact: &ContactBox, o: &Object) -> DVec2 {
+    let b = o.obox();
+    let (lo, hi) = local_extent(&contact.obox, &b);
+    let (region_lo, region_hi) = holding_region(o, contact.action);
     let mut s = DVec2::ZERO;
     for k in 0..2 {
-        // Any shift in [hi − half, lo + half] contains the box; an empty range: centre it.
-        let (from, to) = (hi[k] - half[k], lo[k] + half[k]);
-        s[k] = if from > to { (hi[k] + lo[k]) * 0.5 } else { 0.0f64.clamp(from, to) };
+        // Any shift in [hi − region_hi, lo − region_lo] contains the box; an empty range: centre it.
+        let (from, to) = (hi[k] - region_hi[k], lo[k] - region_lo[k]);
+        s[k] = if from > to { (hi[k] + lo[k] - region_hi[k] - region_lo[k]) * 0.5 } else { 0.0f64.clamp(from, to) };
     }
-    let (ax, ay) = o.axes();
+    let (ax, ay) = b.axes();
     ax * s.x + ay * s.y
+}
+
+/// `m` (world) limited, along each of `o`'s axes, to the moves that keep every `held` box on the
+/// part of `o` it must be on ([`holding_region`]); `m` itself when `o` holds nothing.
+fn within_slack(o: &Object, held: &[&ContactBox], m: DVec2) -> DVec2 {
+    if held.is_empty() {
+        return m;
+    }
+    let b = o.obox();
+    let (ax, ay) = b.axes();
+    let mut local = DVec2::new(m.dot(ax), m.dot(ay));
+    for contact in held {
+        let (lo, hi) = local_extent(&contact.obox, &b);
+        let (region_lo, region_hi) = holding_region(o, contact.action);
+        for k in 0..2 {
+            // Moving o by s moves the box by −s in o's frame: s ∈ [hi − region_hi, lo − region_lo].
+            let (from, to) = ((hi[k] - region_hi[k]).min(0.0), (lo[k] - region_lo[k]).max(0.0));
+            local[k] = local[k].clamp(from, to);
+        }
+    }
+    ax * local.x + ay * local.y
 }
 
 /// The moves of `a` (m) that separate its footprint from `b`'s along each separating axis (both
 /// directions), with a little clearance, shortest first; empty if the footprints do not overlap.
-fn footprint_separations(a: &OBox, b: &OBox) -> Vec<DVec2> {
+pub(super) fn footprint_separations(a: &OBox, b: &OBox) -> Vec<DVec2> {
     let (pa, pb) = (a.footprint(), b.footprint());
     let (a1, a2) = a.axes();
     let (b1, b2) = b.axes();
@@ -344,62 +462,6 @@ fn path_push(b: &OBox, clearance: &Clearance) -> DVec2 {
     let dir = (b.center.truncate() - centroid).try_normalize().unwrap_or(DVec2::X);
     let depth = blocked.len() as f64 * w.pixel_area() / b.size.x.max(b.size.y);
     dir * depth.clamp(w.pixel(), MAX_STEP)
-}
-
-/// The move that brings `b`'s footprint inside `polygon` with `CLEARANCE` to spare, a few steps of
-/// the worst offence first: a footprint corner outside (or too near the boundary), or a polygon
-/// corner inside the footprint (an L-shaped room's inner corner, which all four footprint corners
-/// can miss).
-fn inside_push(b: &OBox, polygon: &Polygon) -> DVec2 {
-    let mut total = DVec2::ZERO;
-    let (ax, ay) = b.axes();
-    let half = b.half().truncate();
-    for _ in 0..4 {
-        let centre = b.center.truncate() + total;
-        let mut worst: Option<(f64, DVec2)> = None;
-        let mut consider = |excess: f64, push: DVec2| {
-            if excess > 1e-9 && worst.is_none_or(|(e, _)| excess > e) {
-                worst = Some((excess, push));
-            }
-        };
-        for p in b.footprint().map(|p| p + total) {
-            let inside = polygon.contains(p);
-            let distance = polygon.distance_to_boundary(p);
-            let excess = if inside { CLEARANCE - distance } else { distance + CLEARANCE };
-            let q = nearest_boundary_point(polygon, p);
-            let inward = if inside { p - q } else { q - p };
-            consider(excess, inward.try_normalize().unwrap_or(DVec2::ZERO) * excess);
-        }
-        for &v in &polygon.points {
-            let local = DVec2::new((v - centre).dot(ax), (v - centre).dot(ay));
-            let exit = half - local.abs();
-            if exit.x <= 0.0 || exit.y <= 0.0 {
-                continue;
-            }
-            // Move the footprint off the corner through its nearer side.
-            let push = if exit.x < exit.y {
-                -ax * local.x.signum() * (exit.x + CLEARANCE)
-            } else {
-                -ay * local.y.signum() * (exit.y + CLEARANCE)
-            };
-            consider(exit.x.min(exit.y) + CLEARANCE, push);
-        }
-        let Some((_, push)) = worst else { break };
-        total += push;
-    }
-    total
-}
-
-fn nearest_boundary_point(polygon: &Polygon, p: DVec2) -> DVec2 {
-    polygon
-        .edges()
-        .map(|(a, b)| {
-            let ab = b - a;
-            let t = ((p - a).dot(ab) / ab.length_squared().max(1e-18)).clamp(0.0, 1.0);
-            a + ab * t
-        })
-        .min_by(|x, y| x.distance_squared(p).total_cmp(&y.distance_squared(p)))
-        .unwrap_or(p)
 }
 
 #[cfg(test)]
@@ -467,11 +529,57 @@ mod tests {
     }
 
     #[test]
+    fn a_diagonal_bed_too_wide_for_its_room_is_squared_and_a_slightly_long_one_narrowed() {
+        let mut scene = generate_room(RoomType::Bedroom, 3, 0, false).scene;
+        scene.humans.clear();
+        // A corridor-like room 2.2 m wide: a 1.4 × 2.0 m bed at 0.7 rad needs 2.36 m.
+        scene.floor_plan.polygon = vec![[0.0, 0.0], [2.2, 0.0], [2.2, 4.0], [0.0, 4.0]];
+        let bed = |yaw: f64, size: [f64; 3]| Object {
+            id: "o0".into(),
+            category: crate::scene::Category::DoubleBed,
+            center: [1.1, 2.0, size[2] * 0.5],
+            size,
+            yaw,
+        };
+        scene.objects = vec![bed(0.7, [1.4, 2.0, 0.5])];
+        let r = polish_scene(&mut scene, 30);
+        assert_eq!(r.squared, 1, "{r:?}");
+        assert_eq!(scene.objects[0].yaw, 0.0);
+        assert_eq!(scene.objects[0].size, [1.4, 2.0, 0.5]);
+        assert!(fits_inside(&scene.objects[0].obox(), &scene.floor_plan.polygon()));
+        // Square already but 2.25 m wide in 2.2 m: narrowed by the 5 cm and twice the clearance.
+        scene.objects = vec![bed(0.0, [2.25, 1.8, 0.5])];
+        let r = polish_scene(&mut scene, 30);
+        assert_eq!(r.squared, 0, "{r:?}");
+        let w = scene.objects[0].size[0];
+        assert!(w < 2.2 - 2.0 * CLEARANCE + 1e-9 && w > 2.15, "{w}");
+        assert!(fits_inside(&scene.objects[0].obox(), &scene.floor_plan.polygon()));
+    }
+
+    #[test]
     fn containment_moves_a_seat_under_its_sitter_by_the_smallest_shift() {
-        let chair = OBox::new(DVec3::new(0.0, 0.0, 0.25), DVec3::new(0.5, 0.5, 0.5), std::f64::consts::FRAC_PI_2);
-        let sit = OBox::new(DVec3::new(0.3, 0.0, 0.3), DVec3::new(0.2, 0.2, 0.2), 0.0);
-        // The box reaches x = 0.4, the chair 0.25: it must move 0.15 along world x.
-        let s = containment_shift(&sit, &chair);
+        let chair = Object {
+            id: "o0".into(),
+            category: crate::scene::Category::Stool,
+            center: [0.0, 0.0, 0.25],
+            size: [0.5, 0.5, 0.5],
+            yaw: std::f64::consts::FRAC_PI_2,
+        };
+        let sit = |center: DVec3, yaw: f64| ContactBox {
+            human: "h0".into(),
+            action: Action::Sit,
+            frames: [0, 1],
+            obox: OBox::new(center, DVec3::new(0.2, 0.2, 0.1), yaw),
+        };
+        // A stool's seat is its whole top: the box reaches x = 0.4, the stool 0.25, so it must move
+        // 0.15 along world x.
+        let s = containment_shift(&sit(DVec3::new(0.3, 0.0, 0.45), 0.0), &chair);
         assert!((s - DVec2::new(0.15, 0.0)).length() < 1e-12, "{s}");
+        // A dining chair facing +y (yaw 0) 0.5 deep has a 6 cm back at −y; its seat starts at
+        // y = −0.19, and the box must start 3 cm further, at −0.16: a box from y = −0.2 moves the
+        // chair by −0.04 in y.
+        let chair = Object { category: crate::scene::Category::DiningChair, yaw: 0.0, ..chair };
+        let s = containment_shift(&sit(DVec3::new(0.0, -0.1, 0.45), 0.0), &chair);
+        assert!((s - DVec2::new(0.0, -0.04)).length() < 1e-12, "{s}");
     }
 }

@@ -1,0 +1,152 @@
+//! The last step of polishing (ours): overlaps the moves could not undo, because both pieces are
+//! wedged between walls and neighbours, are resolved by narrowing or, failing that, removing a piece.
+//!
+//! - Narrowing: where the shortest footprint separation of a pair runs along one of the smaller
+//!   piece's own axes and is at most 10 cm and a quarter of its size there, that piece loses the
+//!   overlap (and 5 mm) on the side facing the other and keeps its far side where it was.
+//! - Removing: a pair that still overlaps loses its smaller piece — never one that holds a person's
+//!   contact (a seat under a sitter stays; two holders that overlap are left as they are). These are
+//!   mostly the model's duplicates (two nightstands, two beds in one place) and pieces squeezed
+//!   into a gap too small for them.
+//!
+//! It does not move anything: placement is the rounds' job.
+
+use super::polish::footprint_separations;
+use crate::geom::intersection_volume;
+use crate::scene::{Object, Scene};
+use glam::DVec2;
+
+/// Largest narrowing of a piece (m).
+const MAX_NARROWING: f64 = 0.1;
+/// Largest narrowing as a share of the piece's size along that axis.
+const MAX_NARROWING_SHARE: f64 = 0.25;
+
+/// What resolving overlaps changed.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct OverlapReport {
+    /// Pieces narrowed.
+    pub narrowed: usize,
+    /// Pieces removed.
+    pub removed: usize,
+}
+
+/// Narrows or removes pieces until no two overlap, sparing the pieces `holds[i]` marks (they
+/// hold a person's contact and may only be narrowed).
+pub fn resolve_overlaps(scene: &mut Scene, holds: &[bool]) -> OverlapReport {
+    let mut report = OverlapReport::default();
+    let mut holds = holds.to_vec();
+    for (i, j) in overlapping_pairs(scene) {
+        if overlap(scene, i, j) && narrow_apart(scene, i, j) {
+            report.narrowed += 1;
+        }
+    }
+    while let Some(victim) = overlapping_pairs(scene).into_iter().find_map(|(i, j)| removable(scene, &holds, i, j)) {
+        scene.objects.remove(victim);
+        holds.remove(victim);
+        report.removed += 1;
+    }
+    report
+}
+
+fn overlap(scene: &Scene, i: usize, j: usize) -> bool {
+    intersection_volume(&scene.objects[i].obox(), &scene.objects[j].obox()) > 1e-9
+}
+
+/// Every overlapping pair (i < j), in index order.
+fn overlapping_pairs(scene: &Scene) -> Vec<(usize, usize)> {
+    let n = scene.objects.len();
+    (0..n).flat_map(|i| (i + 1..n).map(move |j| (i, j))).filter(|&(i, j)| overlap(scene, i, j)).collect()
+}
+
+fn volume(scene: &Scene, i: usize) -> f64 {
+    scene.objects[i].size.iter().product()
+}
+
+/// The smaller of the pair that holds no contact (the other one if the smaller holds one).
+fn removable(scene: &Scene, holds: &[bool], i: usize, j: usize) -> Option<usize> {
+    let (small, large) = if volume(scene, i) <= volume(scene, j) { (i, j) } else { (j, i) };
+    [small, large].into_iter().find(|&k| !holds[k])
+}
+
+/// Narrows the smaller piece of an overlapping pair out of the other, if a small cut along one of
+/// its own axes does it. Returns whether it did.
+fn narrow_apart(scene: &mut Scene, i: usize, j: usize) -> bool {
+    let (small, other) = if volume(scene, i) <= volume(scene, j) { (i, j) } else { (j, i) };
+    let (a, b) = (scene.objects[small].obox(), scene.objects[other].obox());
+    let Some(&m) = footprint_separations(&a, &b).first() else { return false };
+    let (ax, ay) = a.axes();
+    // Only along its own axes (the separation already keeps 5 mm between the two).
+    let along_own = [ax, ay].iter().any(|axis| axis.dot(m).abs() > (1.0 - 1e-9) * m.length());
+    along_own && narrow_by(&mut scene.objects[small], m) && !overlap(scene, small, other)
+}
+
+/// Cuts `o` so that the side it would move away from by `m` (world) comes in by `m`, its other
+/// side staying put, if each cut along its own axes is at most 10 cm and a quarter of its size
+/// there. Returns whether it cut.
+pub(super) fn narrow_by(o: &mut Object, m: DVec2) -> bool {
+    let (ax, ay) = o.obox().axes();
+    let cuts = [ax.dot(m), ay.dot(m)];
+    if cuts.iter().zip(o.size).any(|(c, size)| c.abs() > MAX_NARROWING || c.abs() > MAX_NARROWING_SHARE * size) {
+        return false;
+    }
+    for (k, c) in cuts.into_iter().enumerate() {
+        o.size[k] -= c.abs();
+    }
+    o.center[0] += m.x * 0.5;
+    o.center[1] += m.y * 0.5;
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Category, Object, RoomType};
+
+    fn piece(id: &str, category: Category, center: [f64; 2], size: [f64; 3]) -> Object {
+        Object { id: id.into(), category, center: [center[0], center[1], size[2] * 0.5], size, yaw: 0.0 }
+    }
+
+    fn scene(objects: Vec<Object>) -> Scene {
+        let mut s = crate::data::generate_room(RoomType::Bedroom, 1, 0, false).scene;
+        s.objects = objects;
+        s
+    }
+
+    #[test]
+    fn a_small_overlap_narrows_the_smaller_piece_on_its_near_side() {
+        // A 0.5 m nightstand reaching 4 cm into a bed's side.
+        let mut s = scene(vec![
+            piece("bed", Category::DoubleBed, [0.0, 0.0], [1.6, 2.0, 0.5]),
+            piece("n", Category::Nightstand, [1.01, 0.8], [0.5, 0.4, 0.5]),
+        ]);
+        let r = resolve_overlaps(&mut s, &[false, false]);
+        assert_eq!(r, OverlapReport { narrowed: 1, removed: 0 });
+        let n = &s.objects[1];
+        // Its far side stays at x = 1.26; its near side moves to 0.805 (4.5 cm cut).
+        assert!((n.center[0] + n.size[0] * 0.5 - 1.26).abs() < 1e-12);
+        assert!((n.center[0] - n.size[0] * 0.5 - 0.805).abs() < 1e-12, "{n:?}");
+        assert_eq!(s.objects[0], piece("bed", Category::DoubleBed, [0.0, 0.0], [1.6, 2.0, 0.5]));
+    }
+
+    #[test]
+    fn a_duplicate_goes_unless_it_holds_someone() {
+        let twins = || {
+            scene(vec![
+                piece("a", Category::Nightstand, [0.0, 0.0], [0.5, 0.4, 0.5]),
+                piece("b", Category::Nightstand, [0.05, 0.02], [0.45, 0.4, 0.5]),
+                piece("far", Category::Wardrobe, [3.0, 3.0], [1.0, 0.6, 2.0]),
+            ])
+        };
+        let mut s = twins();
+        assert_eq!(resolve_overlaps(&mut s, &[false, false, false]), OverlapReport { narrowed: 0, removed: 1 });
+        assert_eq!(s.objects.iter().map(|o| o.id.as_str()).collect::<Vec<_>>(), ["a", "far"]);
+        // The smaller one holds a contact: the larger goes.
+        let mut s = twins();
+        resolve_overlaps(&mut s, &[false, true, false]);
+        assert_eq!(s.objects.iter().map(|o| o.id.as_str()).collect::<Vec<_>>(), ["b", "far"]);
+        // Both hold contacts: both stay.
+        let mut s = twins();
+        assert_eq!(resolve_overlaps(&mut s, &[true, true, false]), OverlapReport::default());
+        assert_eq!(s.objects.len(), 3);
+    }
+}
