@@ -4,7 +4,7 @@
 //!
 //! - A sitter gets a seat of the category the room already seats people on (else a chair, an
 //!   armchair or a dining chair for bedrooms, living and dining rooms), facing like the sitter, its
-//!   seat at the height of the sitter's support box and the box 3 cm in front of the backrest.
+//!   seat at the top of the sitter's support volume, the backrest clear of the sitter's back.
 //! - A sleeper gets a bed along the body (bedrooms) or a sofa with the body along its seat (living
 //!   and dining rooms), the mattress or seat at the box's bottom.
 //! - A toucher gets a piece in front of them, the pressed volume just inside its front face: a
@@ -22,8 +22,37 @@ use crate::scene::{Action, Category, Group, Object, RoomType, Scene};
 use glam::{DVec2, DVec3};
 use std::f64::consts::{FRAC_PI_2, PI};
 
-/// Gap between a sitter's support box and the backrest (m).
-const BACK_GAP: f64 = 0.03;
+/// Clearance kept between a sitter's back and the backrest (m).
+const BACK_MARGIN: f64 = 0.01;
+
+/// How far in front of the backrest a sitter's support volume must start (m): as far as their
+/// torso (the capsules from pelvis to neck) reaches behind the volume's back edge over the span,
+/// plus 1 cm — people lean back and their back is wider than their seat bones; 3 cm for a person
+/// without those joints.
+pub(super) fn back_gap(scene: &Scene, contact: &ContactBox) -> f64 {
+    const TORSO: [&str; 4] = ["pelvis", "spine", "chest", "neck"];
+    let Some(human) = scene.humans.iter().find(|h| h.id == contact.human) else { return 0.03 };
+    let s = &human.skeleton;
+    let torso: Vec<usize> = TORSO.iter().filter_map(|n| s.joint(n)).collect();
+    let bones: Vec<_> = s.bones.iter().filter(|b| torso.contains(&b.a) && torso.contains(&b.b)).collect();
+    if bones.is_empty() {
+        return 0.03;
+    }
+    let b = &contact.obox;
+    let back = DVec2::new(b.yaw.sin(), -b.yaw.cos());
+    let edge = b.center.truncate().dot(back) + b.size.y * 0.5;
+    let [start, end] = contact.frames;
+    let frames = (start..end.max(start + 1)).step_by(((end - start) / 8).max(1)).filter(|&f| f < human.frames.len());
+    let mut reach: f64 = 0.0;
+    for f in frames {
+        for bone in &bones {
+            for j in [bone.a, bone.b] {
+                reach = reach.max(human.joint_at(f, j).truncate().dot(back) + bone.radius - edge);
+            }
+        }
+    }
+    reach + BACK_MARGIN
+}
 /// Margin around a box in the width of a new piece (m).
 const SIDE_MARGIN: f64 = 0.04;
 /// Highest palm that touches a top rather than a front face (m).
@@ -38,15 +67,16 @@ pub fn support_for(scene: &Scene, contact: &ContactBox) -> Option<Object> {
     let [w, d, h] = median_size(category);
     let (size, yaw, box_at) = match (contact.action, category.group()) {
         (Action::Sit, _) => {
+            let gap = back_gap(scene, contact);
             let mut size = [w.max(b.size.x + SIDE_MARGIN), d, h];
             size[2] = height_for_surface(category, size, top);
             let surface = template_of(category, &boxed(size)).surface?;
             // Wide enough between the arms, deep enough for the box in front of the backrest.
             size[0] += (b.size.x + SIDE_MARGIN - surface.extent().x).max(0.0);
-            size[1] += (surface.min.y + BACK_GAP + b.size.y + SIDE_MARGIN - surface.max.y).max(0.0);
+            size[1] += (surface.min.y + gap + b.size.y + SIDE_MARGIN - surface.max.y).max(0.0);
             let surface = template_of(category, &boxed(size)).surface?;
-            // Facing like the sitter, the box's back edge BACK_GAP in front of the backrest.
-            (size, b.yaw, DVec2::new(0.0, surface.min.y + BACK_GAP + b.size.y * 0.5))
+            // Facing like the sitter, the box's back edge `gap` in front of the backrest.
+            (size, b.yaw, DVec2::new(0.0, surface.min.y + gap + b.size.y * 0.5))
         }
         (Action::Lie, Group::Sofa) => {
             // Along the seat (the body along the sofa's local x), as the data lays people on sofas.

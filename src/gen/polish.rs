@@ -25,7 +25,7 @@
 //! seats and sofas.
 
 use super::clearance::Clearance;
-use super::completion::{height_for_surface, support_for};
+use super::completion::{back_gap, height_for_surface, support_for};
 use super::inside::{CLEARANCE, fits_inside, inside_push, worst_offence};
 use super::overlaps::{narrow_by, resolve_overlaps};
 use crate::eval::contact_iou;
@@ -76,6 +76,7 @@ const COVERED: f64 = 0.5;
 pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
     let cond = Conditions::of(scene);
     let clearance = Clearance::of(scene, &cond.window);
+    let gaps: Vec<f64> = cond.contact_boxes.iter().map(|c| back_gap(scene, c)).collect();
     let mut report = PolishReport::default();
     let start: Vec<DVec2> = scene.objects.iter().map(|o| DVec2::new(o.center[0], o.center[1])).collect();
     let mut holders = Vec::new();
@@ -92,7 +93,7 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
             break;
         }
         report.added += added;
-        polish_rounds(scene, &cond, &clearance, &holders, rounds, &mut report);
+        polish_rounds(scene, &cond, &gaps, &clearance, &holders, rounds, &mut report);
     }
     report.max_move = scene
         .objects
@@ -100,7 +101,7 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
         .zip(&start)
         .map(|(o, s)| DVec2::new(o.center[0], o.center[1]).distance(*s))
         .fold(0.0, f64::max);
-    report.squared = square_up(scene, &cond, &holders);
+    report.squared = square_up(scene, &cond, &gaps, &holders);
     let holds: Vec<bool> = (0..scene.objects.len()).map(|i| holders.iter().any(|(_, h)| *h == i)).collect();
     let overlaps = resolve_overlaps(scene, &holds);
     (report.narrowed, report.removed) = (overlaps.narrowed, overlaps.removed);
@@ -111,6 +112,7 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
 fn polish_rounds(
     scene: &mut Scene,
     cond: &Conditions,
+    gaps: &[f64],
     clearance: &Clearance,
     holders: &[(usize, usize)],
     rounds: usize,
@@ -124,7 +126,7 @@ fn polish_rounds(
             scene.objects[*i].yaw = yaw;
             turned[*i] = true;
         }
-        report.resized += fit_size(&mut scene.objects[*i], contact) as usize;
+        report.resized += fit_size(&mut scene.objects[*i], contact, gaps[*b]) as usize;
     }
     report.turned += turned.iter().filter(|t| **t).count();
     let mobility: Vec<f64> = (0..scene.objects.len())
@@ -137,7 +139,7 @@ fn polish_rounds(
         let mut counts = vec![0usize; scene.objects.len()];
         if round * 3 < rounds * 2 {
             for (b, i) in holders {
-                moves[*i] += containment_shift(&cond.contact_boxes[*b], &scene.objects[*i]);
+                moves[*i] += containment_shift(&cond.contact_boxes[*b], gaps[*b], &scene.objects[*i]);
                 counts[*i] += 1;
             }
         }
@@ -145,7 +147,7 @@ fn polish_rounds(
             shift(o, (moves[i] / counts[i].max(1) as f64).clamp_length_max(MAX_STEP));
             if round + 5 < rounds {
                 // A holder gives way to walkers only as far as its people stay on it.
-                let push = within_slack(o, &held_by(holders, cond, i), path_push(&o.obox(), clearance));
+                let push = within_slack(o, &held_by(holders, cond, gaps, i), path_push(&o.obox(), clearance));
                 shift(o, push.clamp_length_max(MAX_STEP));
             }
         }
@@ -192,7 +194,7 @@ fn polish_rounds(
 /// unturned piece by what sticks out (at most 10 cm and a quarter of its size) if that makes it fit.
 /// Returns how many pieces were turned. (A diagonal bed 1.3 m × 2 m needs 2.3 m of width; square,
 /// 1.3 m.)
-fn square_up(scene: &mut Scene, cond: &Conditions, holders: &[(usize, usize)]) -> usize {
+fn square_up(scene: &mut Scene, cond: &Conditions, gaps: &[f64], holders: &[(usize, usize)]) -> usize {
     let polygon = scene.floor_plan.polygon();
     let Some((a, b)) = polygon.edges().max_by(|x, y| (x.1 - x.0).length().total_cmp(&(y.1 - y.0).length())) else {
         return 0;
@@ -207,9 +209,9 @@ fn square_up(scene: &mut Scene, cond: &Conditions, holders: &[(usize, usize)]) -
         let before = scene.objects[i].clone();
         let o = &mut scene.objects[i];
         o.yaw = wall + ((o.yaw - wall) / quarter).round() * quarter;
-        let held = held_by(holders, cond, i);
+        let held = held_by(holders, cond, gaps, i);
         if !held.is_empty() {
-            let m = held.iter().map(|b| containment_shift(b, o)).sum::<DVec2>() / held.len() as f64;
+            let m = held.iter().map(|(b, gap)| containment_shift(b, *gap, o)).sum::<DVec2>() / held.len() as f64;
             shift(o, m);
         }
         let w = inside_push(&o.obox(), &polygon);
@@ -235,9 +237,9 @@ fn square_up(scene: &mut Scene, cond: &Conditions, holders: &[(usize, usize)]) -
     turned
 }
 
-/// The contact boxes object `i` holds.
-fn held_by<'a>(holders: &[(usize, usize)], cond: &'a Conditions, i: usize) -> Vec<&'a ContactBox> {
-    holders.iter().filter(|(_, h)| *h == i).map(|(b, _)| &cond.contact_boxes[*b]).collect()
+/// The contact boxes object `i` holds, each with its back gap.
+fn held_by<'a>(holders: &[(usize, usize)], cond: &'a Conditions, gaps: &[f64], i: usize) -> Vec<(&'a ContactBox, f64)> {
+    holders.iter().filter(|(_, h)| *h == i).map(|(b, _)| (&cond.contact_boxes[*b], gaps[*b])).collect()
 }
 
 fn shift(o: &mut Object, m: DVec2) {
@@ -340,7 +342,7 @@ fn facing_yaw(o: &Object, contact: &ContactBox) -> Option<f64> {
 /// or sleeper's support volume (up or down), anything else grows to the top of the box; width and
 /// depth grow until the box fits the part it must be on ([`holding_region`]). Changes of at most
 /// 15 cm in height and 20 cm in width or depth. Returns whether it changed.
-fn fit_size(o: &mut Object, contact: &ContactBox) -> bool {
+fn fit_size(o: &mut Object, contact: &ContactBox, back: f64) -> bool {
     if o.category.is_hanging() {
         return false;
     }
@@ -356,7 +358,7 @@ fn fit_size(o: &mut Object, contact: &ContactBox) -> bool {
         o.center[2] = height * 0.5;
     }
     let (lo, hi) = local_extent(&contact.obox, &o.obox());
-    let (region_lo, region_hi) = holding_region(o, contact.action);
+    let (region_lo, region_hi) = holding_region(o, contact, back);
     for k in 0..2 {
         let need = (hi[k] - lo[k]) + (o.size[k] - (region_hi[k] - region_lo[k]));
         if need > o.size[k] && need - o.size[k] <= MAX_GROW_EXTENT {
@@ -366,20 +368,17 @@ fn fit_size(o: &mut Object, contact: &ContactBox) -> bool {
     o.size != before
 }
 
-/// Clearance between a sitter's support volume and the backrest (m).
-const BACK_GAP: f64 = 0.03;
-
-/// The part of `o`'s footprint (local min, max corners) a person doing `action` must be on: a
-/// seat's or bed's surface for sitting and lying (3 cm clear of a chair's or sofa's backrest), the
-/// whole footprint otherwise.
-fn holding_region(o: &Object, action: Action) -> (DVec2, DVec2) {
+/// The part of `o`'s footprint (local min, max corners) the person of `contact` must be on: a
+/// seat's or bed's surface for sitting and lying (on a chair or sofa, `back` clear of the backrest,
+/// [`back_gap`]), the whole footprint otherwise.
+fn holding_region(o: &Object, contact: &ContactBox, back: f64) -> (DVec2, DVec2) {
     let half = DVec2::new(o.size[0], o.size[1]) * 0.5;
+    let action = contact.action;
     let Some(surface) = template(o).surface.filter(|_| matches!(action, Action::Sit | Action::Lie)) else {
         return (-half, half);
     };
     let backed = action == Action::Sit && matches!(o.category.group(), Group::Chair | Group::Sofa);
-    let gap = if backed { BACK_GAP } else { 0.0 };
-    (surface.min + DVec2::new(0.0, gap), surface.max)
+    (surface.min + DVec2::new(0.0, if backed { back } else { 0.0 }), surface.max)
 }
 
 /// The contact box's footprint corners in `o`'s frame: (min, max) per axis.
@@ -392,10 +391,10 @@ fn local_extent(contact: &OBox, o: &OBox) -> (DVec2, DVec2) {
 
 /// The smallest move of `o` (world, m) that puts `contact`'s footprint inside the part of `o` it
 /// must be on ([`holding_region`]), or centres it there where it cannot fit.
-fn containment_shift(contact: &ContactBox, o: &Object) -> DVec2 {
+fn containment_shift(contact: &ContactBox, back: f64, o: &Object) -> DVec2 {
     let b = o.obox();
     let (lo, hi) = local_extent(&contact.obox, &b);
-    let (region_lo, region_hi) = holding_region(o, contact.action);
+    let (region_lo, region_hi) = holding_region(o, contact, back);
     let mut s = DVec2::ZERO;
     for k in 0..2 {
         // Any shift in [hi − region_hi, lo − region_lo] contains the box; an empty range: centre it.
@@ -408,16 +407,16 @@ fn containment_shift(contact: &ContactBox, o: &Object) -> DVec2 {
 
 /// `m` (world) limited, along each of `o`'s axes, to the moves that keep every `held` box on the
 /// part of `o` it must be on ([`holding_region`]); `m` itself when `o` holds nothing.
-fn within_slack(o: &Object, held: &[&ContactBox], m: DVec2) -> DVec2 {
+fn within_slack(o: &Object, held: &[(&ContactBox, f64)], m: DVec2) -> DVec2 {
     if held.is_empty() {
         return m;
     }
     let b = o.obox();
     let (ax, ay) = b.axes();
     let mut local = DVec2::new(m.dot(ax), m.dot(ay));
-    for contact in held {
+    for (contact, back) in held {
         let (lo, hi) = local_extent(&contact.obox, &b);
-        let (region_lo, region_hi) = holding_region(o, contact.action);
+        let (region_lo, region_hi) = holding_region(o, contact, *back);
         for k in 0..2 {
             // Moving o by s moves the box by −s in o's frame: s ∈ [hi − region_hi, lo − region_lo].
             let (from, to) = ((hi[k] - region_hi[k]).min(0.0), (lo[k] - region_lo[k]).max(0.0));
@@ -479,7 +478,10 @@ mod tests {
             let mut scene = generate_room(room, 3, index, false).scene;
             let before = scene.clone();
             let r = polish_scene(&mut scene, 30);
-            assert!(r.max_move < 0.01, "{room}: {r:?}");
+            // The data lets a sitter's back press up to ~1 cm into a backrest; polishing keeps it
+            // 1 cm clear, so a seat may move back by about 2 cm. Nothing else moves.
+            assert!(r.max_move < 0.025, "{room}: {r:?}");
+            assert_eq!((r.added, r.squared, r.narrowed, r.removed), (0, 0, 0, 0), "{room}");
             assert_eq!(scene.objects.len(), before.objects.len());
             // Seats already face their sitters: turning them changes nothing.
             for (o, b) in scene.objects.iter().zip(&before.objects) {
@@ -573,13 +575,13 @@ mod tests {
         };
         // A stool's seat is its whole top: the box reaches x = 0.4, the stool 0.25, so it must move
         // 0.15 along world x.
-        let s = containment_shift(&sit(DVec3::new(0.3, 0.0, 0.45), 0.0), &chair);
+        let s = containment_shift(&sit(DVec3::new(0.3, 0.0, 0.45), 0.0), 0.08, &chair);
         assert!((s - DVec2::new(0.15, 0.0)).length() < 1e-12, "{s}");
         // A dining chair facing +y (yaw 0) 0.5 deep has a 6 cm back at −y; its seat starts at
-        // y = −0.19, and the box must start 3 cm further, at −0.16: a box from y = −0.2 moves the
-        // chair by −0.04 in y.
+        // y = −0.19, and the box must start a back gap of 8 cm further, at −0.11: a box from y = −0.2
+        // moves the chair by −0.09 in y.
         let chair = Object { category: crate::scene::Category::DiningChair, yaw: 0.0, ..chair };
-        let s = containment_shift(&sit(DVec3::new(0.0, -0.1, 0.45), 0.0), &chair);
-        assert!((s - DVec2::new(0.0, -0.04)).length() < 1e-12, "{s}");
+        let s = containment_shift(&sit(DVec3::new(0.0, -0.1, 0.45), 0.0), 0.08, &chair);
+        assert!((s - DVec2::new(0.0, -0.09)).length() < 1e-12, "{s}");
     }
 }
