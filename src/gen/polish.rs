@@ -10,16 +10,18 @@
 //! their box (at most 15 cm either way), and width and depth grow by at most 20 cm where the box
 //! needs it. Every round then (1) moves each holder by the smallest shift that puts its boxes'
 //! footprints on the part they must be on (a seat's surface clear of its backrest, a mattress, else
-//! the footprint) and pushes pieces out of walking people's way (where footprint and height meet a
-//! walking or standing body, `Clearance`), (2) separates overlapping pairs along the shortest
+//! the footprint) and pushes pieces out of people's way (where footprint and height meet a walking
+//! or standing body, or a sitter's or toucher's shins and feet for a piece solid to the floor,
+//! `Clearance`; a holder only as far as its people stay on it), (2) separates overlapping pairs along the shortest
 //! separating axis that keeps both inside the walls, and (3) moves every footprint inside the floor
 //! plan (corners inside, and off an L-shaped room's inner corner). Holders move a fifth as much for
 //! overlaps and paths; the last third of the rounds leaves contacts alone and the last five paths,
 //! so the layout ends separated and inside. Rounds stop when nothing moves a millimetre. A box
 //! still less than half covered after that gets a new piece and a second pass of rounds. A piece
 //! still poking out of the floor plan is then turned square to the walls or narrowed by at most
-//! 10 cm, and overlaps that survive are narrowed away or lose their smaller piece (`overlaps`;
-//! never a piece that holds a person).
+//! 10 cm, a piece holding nobody is narrowed off the walkers' feet where 10 cm do it, and overlaps
+//! that survive are narrowed away or lose their smaller piece (`overlaps`; never a piece that holds
+//! a person).
 //!
 //! It never re-categorises objects, adds only within the room type's object limit, and turns only
 //! seats and sofas.
@@ -29,7 +31,7 @@ use super::completion::{back_gap, height_for_surface, support_for};
 use super::inside::{CLEARANCE, fits_inside, inside_push, worst_offence};
 use super::overlaps::{narrow_by, resolve_overlaps};
 use crate::eval::contact_iou;
-use crate::furniture::template;
+use crate::furniture::{PartRole, template};
 use crate::geom::{OBox, intersection_volume, iou_3d};
 use crate::human::{Conditions, ContactBox};
 use crate::scene::{Action, Group, Object, Scene};
@@ -103,6 +105,7 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
         .fold(0.0, f64::max);
     report.squared = square_up(scene, &cond, &gaps, &holders);
     let holds: Vec<bool> = (0..scene.objects.len()).map(|i| holders.iter().any(|(_, h)| *h == i)).collect();
+    report.narrowed += narrow_off_paths(scene, &cond, &holds);
     let overlaps = resolve_overlaps(scene, &holds);
     (report.narrowed, report.removed) = (overlaps.narrowed, overlaps.removed);
     report
@@ -147,7 +150,7 @@ fn polish_rounds(
             shift(o, (moves[i] / counts[i].max(1) as f64).clamp_length_max(MAX_STEP));
             if round + 5 < rounds {
                 // A holder gives way to walkers only as far as its people stay on it.
-                let push = within_slack(o, &held_by(holders, cond, gaps, i), path_push(&o.obox(), clearance));
+                let push = within_slack(o, &held_by(holders, cond, gaps, i), path_push(o, clearance));
                 shift(o, push.clamp_length_max(MAX_STEP));
             }
         }
@@ -235,6 +238,44 @@ fn square_up(scene: &mut Scene, cond: &Conditions, gaps: &[f64], holders: &[(usi
         }
     }
     turned
+}
+
+/// Narrows every standing piece that holds nobody off the walkers' feet (the free-space mask the
+/// Col_mot metric counts), where cutting one side by at most 10 cm and a quarter of the piece
+/// clears every covered pixel. Returns how many it narrowed.
+fn narrow_off_paths(scene: &mut Scene, cond: &Conditions, holds: &[bool]) -> usize {
+    let (window, free) = (&cond.window, &cond.free_space);
+    let mut narrowed = 0;
+    for (o, &held) in scene.objects.iter_mut().zip(holds) {
+        if held || o.category.is_hanging() {
+            continue;
+        }
+        let b = o.obox();
+        let (lo, hi) = b.footprint_aabb();
+        let (cols, rows) = window.pixel_ranges(lo, hi);
+        let covered: Vec<DVec2> = rows
+            .flat_map(|j| cols.clone().map(move |i| (i, j)))
+            .filter(|&(i, j)| free.get(i, j) && b.footprint_contains(window.pixel_center(i, j)))
+            .map(|(i, j)| b.to_local(window.pixel_center(i, j).extend(b.center.z)).truncate())
+            .collect();
+        if covered.is_empty() {
+            continue;
+        }
+        // The cheapest side to cut: past the farthest covered pixel from that side, half a pixel more.
+        let (ax, ay) = b.axes();
+        let half = b.half().truncate();
+        let margin = window.pixel() * 0.5;
+        let (min, max) = covered.iter().fold((half, -half), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+        let cuts = [
+            (half.x - min.x + margin, -ax),
+            (max.x + half.x + margin, ax),
+            (half.y - min.y + margin, -ay),
+            (max.y + half.y + margin, ay),
+        ];
+        let (cut, dir) = cuts.into_iter().min_by(|a, b| a.0.total_cmp(&b.0)).expect("four sides");
+        narrowed += narrow_by(o, dir * cut) as usize;
+    }
+    narrowed
 }
 
 /// The contact boxes object `i` holds, each with its back gap.
@@ -449,10 +490,14 @@ pub(super) fn footprint_separations(a: &OBox, b: &OBox) -> Vec<DVec2> {
     out
 }
 
-/// A push of `b` out of the walking people's way: away from the centroid of the pixels where it
-/// meets their bodies, by their area over its longer side.
-fn path_push(b: &OBox, clearance: &Clearance) -> DVec2 {
-    let blocked = clearance.blocked(b);
+/// A push of `o` out of people's way (walkers' bodies; for a solid piece also sitters' and
+/// touchers' shins and feet): away from the centroid of the pixels where it meets them, by their
+/// area over its longer side.
+fn path_push(o: &Object, clearance: &Clearance) -> DVec2 {
+    let b = o.obox();
+    // A piece without legs is solid to the floor: a sitter's feet cannot go under it.
+    let solid = !template(o).parts.iter().any(|p| p.role == PartRole::Leg);
+    let blocked = clearance.blocked(&b, solid);
     if blocked.is_empty() {
         return DVec2::ZERO;
     }
@@ -556,6 +601,40 @@ mod tests {
         let w = scene.objects[0].size[0];
         assert!(w < 2.2 - 2.0 * CLEARANCE + 1e-9 && w > 2.15, "{w}");
         assert!(fits_inside(&scene.objects[0].obox(), &scene.floor_plan.polygon()));
+    }
+
+    #[test]
+    fn a_piece_a_few_centimetres_over_the_walkers_feet_is_narrowed_off_them() {
+        let mut scene = generate_room(RoomType::Living, 3, 2, false).scene;
+        scene.humans.clear();
+        let mut cond = Conditions::of(&scene);
+        // A column of walked pixels at x ≈ 2.0 m.
+        let w = cond.window;
+        let column = (0..crate::geom::RES).find(|&i| w.pixel_center(i, 0).x > 2.0).unwrap();
+        cond.free_space = crate::geom::Mask::new();
+        for j in 0..crate::geom::RES {
+            cond.free_space.set(column, j);
+        }
+        let x = w.pixel_center(column, 0).x;
+        let cabinet = |center_x: f64| Object {
+            id: "o0".into(),
+            category: crate::scene::Category::Cabinet,
+            center: [center_x, w.center.y, 0.4],
+            size: [0.8, 0.4, 0.8],
+            yaw: 0.0,
+        };
+        // Its +x side 4 cm past the column's centres: cut back to half a pixel short of them.
+        scene.objects = vec![cabinet(x + 0.04 - 0.4)];
+        assert_eq!(narrow_off_paths(&mut scene, &cond, &[false]), 1);
+        let o = &scene.objects[0];
+        assert!((o.center[0] + o.size[0] * 0.5 - (x - w.pixel() * 0.5)).abs() < 1e-9, "{o:?}");
+        assert!((o.center[0] - o.size[0] * 0.5 - (x + 0.04 - 0.8)).abs() < 1e-9, "the far side stays");
+        // 20 cm over: left alone; a piece holding someone: left alone.
+        for (center, holds) in [(x + 0.2 - 0.4, false), (x + 0.04 - 0.4, true)] {
+            scene.objects = vec![cabinet(center)];
+            assert_eq!(narrow_off_paths(&mut scene, &cond, &[holds]), 0);
+            assert_eq!(scene.objects[0], cabinet(center));
+        }
     }
 
     #[test]
