@@ -61,7 +61,7 @@ pub struct PolishReport {
     pub added: usize,
     /// Pieces left poking out of the floor plan turned square to the walls.
     pub squared: usize,
-    /// Objects narrowed out of an overlap (`overlaps`).
+    /// Objects narrowed off the walkers' feet or out of an overlap (`overlaps`).
     pub narrowed: usize,
     /// Objects removed from an overlap nothing else undid (`overlaps`).
     pub removed: usize,
@@ -74,7 +74,8 @@ const COVERED: f64 = 0.5;
 
 /// Polishes `scene`'s objects in place with at most `rounds` rounds per pass: a first pass, with a
 /// new piece for every contact box no object can hold, and a second one only if some box is still
-/// uncovered and a new piece can be added for it.
+/// uncovered and a new piece can be added for it; then squares up what pokes out of the walls,
+/// narrows free pieces off the walkers' feet and resolves the overlaps that are left.
 pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
     let cond = Conditions::of(scene);
     let clearance = Clearance::of(scene, &cond.window);
@@ -107,7 +108,8 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
     let holds: Vec<bool> = (0..scene.objects.len()).map(|i| holders.iter().any(|(_, h)| *h == i)).collect();
     report.narrowed += narrow_off_paths(scene, &cond, &holds);
     let overlaps = resolve_overlaps(scene, &holds);
-    (report.narrowed, report.removed) = (overlaps.narrowed, overlaps.removed);
+    report.narrowed += overlaps.narrowed;
+    report.removed = overlaps.removed;
     report
 }
 
