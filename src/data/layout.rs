@@ -443,9 +443,7 @@ fn round_mm(x: f64) -> f64 {
 }
 
 fn round_angle(a: f64) -> f64 {
-    let a = a.rem_euclid(std::f64::consts::TAU);
-    let a = if a > std::f64::consts::PI { a - std::f64::consts::TAU } else { a };
-    (a * 1e6).round() / 1e6
+    (crate::geom::wrap_angle(a) * 1e6).round() / 1e6
 }
 
 /// The floor on a 10 cm grid: which cells are at least half a walkway from walls and furniture,

@@ -16,11 +16,14 @@
 //! limit. This module only makes the objects; polishing moves them with the rest.
 
 use crate::furniture::{catalog_items, template_of};
-use crate::geom::OBox;
+use crate::geom::{OBox, facing, wrap_angle};
 use crate::human::ContactBox;
 use crate::scene::{Action, Category, Group, Object, RoomType, Scene};
 use glam::{DVec2, DVec3};
 use std::f64::consts::{FRAC_PI_2, PI};
+
+/// The back gap of a sitter whose torso joints are unknown (m).
+const UNKNOWN_BACK_GAP: f64 = 0.03;
 
 /// Clearance kept between a sitter's back and the backrest (m).
 const BACK_MARGIN: f64 = 0.01;
@@ -31,15 +34,15 @@ const BACK_MARGIN: f64 = 0.01;
 /// without those joints.
 pub(super) fn back_gap(scene: &Scene, contact: &ContactBox) -> f64 {
     const TORSO: [&str; 4] = ["pelvis", "spine", "chest", "neck"];
-    let Some(human) = scene.humans.iter().find(|h| h.id == contact.human) else { return 0.03 };
+    let Some(human) = scene.humans.iter().find(|h| h.id == contact.human) else { return UNKNOWN_BACK_GAP };
     let s = &human.skeleton;
     let torso: Vec<usize> = TORSO.iter().filter_map(|n| s.joint(n)).collect();
     let bones: Vec<_> = s.bones.iter().filter(|b| torso.contains(&b.a) && torso.contains(&b.b)).collect();
     if bones.is_empty() {
-        return 0.03;
+        return UNKNOWN_BACK_GAP;
     }
     let b = &contact.obox;
-    let back = DVec2::new(b.yaw.sin(), -b.yaw.cos());
+    let back = -facing(b.yaw);
     let edge = b.center.truncate().dot(back) + b.size.y * 0.5;
     let [start, end] = contact.frames;
     let frames = (start..end.max(start + 1)).step_by(((end - start) / 8).max(1)).filter(|&f| f < human.frames.len());
@@ -102,16 +105,14 @@ pub fn support_for(scene: &Scene, contact: &ContactBox) -> Option<Object> {
         (Action::Walk | Action::Stand, _) => return None,
     };
     // The piece's centre puts the box at `box_at` in the piece's frame.
-    let (sin, cos) = yaw.sin_cos();
-    let offset = DVec2::new(cos * box_at.x - sin * box_at.y, sin * box_at.x + cos * box_at.y);
-    let center = b.center.truncate() - offset;
-    Some(Object { id: free_id(scene), category, center: [center.x, center.y, size[2] * 0.5], size, yaw: wrap(yaw) })
-}
-
-/// An angle in (−π, π].
-fn wrap(a: f64) -> f64 {
-    let w = a.rem_euclid(2.0 * PI);
-    if w > PI { w - 2.0 * PI } else { w }
+    let center = b.center.truncate() - DVec2::from_angle(yaw).rotate(box_at);
+    Some(Object {
+        id: free_id(scene),
+        category,
+        center: [center.x, center.y, size[2] * 0.5],
+        size,
+        yaw: wrap_angle(yaw),
+    })
 }
 
 /// The category of the piece that holds `contact` in `scene`'s room type.

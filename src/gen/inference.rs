@@ -197,17 +197,13 @@ impl FastDenoiser {
         let mask: Vec<f32> = cond.contact_mask.flatten_all()?.to_vec1()?;
         let floor: Vec<f32> = cond.floor.flatten_all()?.to_vec1()?;
         let free: Vec<f32> = cond.free.flatten_all()?.to_vec1()?;
-        let slice = |v: &[f32], item: usize| -> Vec<f32> { v[item * v.len() / b..(item + 1) * v.len() / b].to_vec() };
-        let items = (0..b)
-            .into_par_iter()
-            .map(|item| {
-                self.prepare_item(
-                    &slice(&contacts, item),
-                    &mask[item * k..(item + 1) * k],
-                    &slice(&floor, item),
-                    &slice(&free, item),
-                )
-            })
+        let per_item = |v: &[f32]| (v.len() / b.max(1)).max(1);
+        let items = contacts
+            .par_chunks_exact(per_item(&contacts))
+            .zip(mask.par_chunks_exact(k.max(1)))
+            .zip(floor.par_chunks_exact(per_item(&floor)))
+            .zip(free.par_chunks_exact(per_item(&free)))
+            .map(|(((contacts, mask), floor), free)| self.prepare_item(contacts, mask, floor, free))
             .collect();
         Ok(PreparedBatch { items })
     }

@@ -118,6 +118,12 @@ pub fn yaw_facing(dir: DVec2) -> f64 {
     (-dir.x).atan2(dir.y)
 }
 
+/// `a` as an angle in (−π, π].
+pub fn wrap_angle(a: f64) -> f64 {
+    let w = a.rem_euclid(std::f64::consts::TAU);
+    if w > std::f64::consts::PI { w - std::f64::consts::TAU } else { w }
+}
+
 /// The horizontal unit direction the front (local +y) of something with `yaw` faces.
 pub fn facing(yaw: f64) -> DVec2 {
     DVec2::new(-yaw.sin(), yaw.cos())
