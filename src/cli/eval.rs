@@ -2,15 +2,17 @@
 //! generated scenes.
 //!
 //! The reference gives the category frequencies for CKL: its `test` split when it is a dataset,
-//! else all its scenes. Each `--pred` folder is one row.
+//! else all its scenes. Each `--pred` folder is one row. When the reference is a dataset with a
+//! `train` split, the table ends with the CKL that real training layouts score at the rows' size
+//! (the floor a perfect generator would reach; `eval::ckl_floor`).
 
 use super::output::{print_json, print_text};
 use super::{ExitStatus, GlobalArgs};
 use anyhow::Context;
 use clap::Args;
 use rayon::prelude::*;
-use shade_sim::eval::{EvalRow, PhysicsRates, category_frequencies, evaluate};
-use shade_sim::scene::{Action, Scene};
+use shade_sim::eval::{CklFloor, EvalRow, PhysicsRates, category_frequencies, ckl_floor, evaluate};
+use shade_sim::scene::{Action, RoomType, Scene};
 use shade_sim::sim::{CheckConfig, ViolationKind, check_scene};
 use std::path::{Path, PathBuf};
 
@@ -102,6 +104,7 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
         }
         rows.push(row);
     }
+    let floors = ckl_floors(&args.reference.join("train"), test.is_dir(), &rows, room, &freq)?;
     if let Some(out) = &args.out {
         let mut text = serde_json::to_string_pretty(&rows)?;
         text.push('\n');
@@ -112,8 +115,36 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
         print_json(&rows)?;
     } else if global.quiet == 0 {
         print_text(&table(&rows))?;
+        for f in &floors {
+            print_text(&format!(
+                "CKL of {} real layouts drawn from the train split ({} draws): mean {:.4}, p10 {:.4}, p90 {:.4}\n",
+                f.layouts, f.draws, f.mean, f.p10, f.p90
+            ))?;
+        }
     }
     Ok(ExitStatus::Success)
+}
+
+/// Draws of real layouts per floor.
+const FLOOR_DRAWS: usize = 200;
+
+/// The CKL floor for each distinct row size, from the dataset's train split (none for a plain
+/// folder reference or a dataset without one).
+fn ckl_floors(
+    train: &Path,
+    dataset: bool,
+    rows: &[EvalRow],
+    room: RoomType,
+    freq: &[f64],
+) -> anyhow::Result<Vec<CklFloor>> {
+    if !dataset || !train.is_dir() {
+        return Ok(Vec::new());
+    }
+    let pool = load_all(train)?;
+    let mut sizes: Vec<usize> = rows.iter().map(|r| r.scenes).collect();
+    sizes.sort_unstable();
+    sizes.dedup();
+    Ok(sizes.into_iter().filter_map(|n| ckl_floor(&pool, room, freq, n, FLOOR_DRAWS, 0)).collect())
 }
 
 fn table(rows: &[EvalRow]) -> String {

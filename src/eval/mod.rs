@@ -1,12 +1,14 @@
 //! Metrics: contact IoU, interpenetration (E_pen), the layout metrics of SHADE's Table 1 (Col_mot,
-//! R_out, Col_obj, CKL) and, in `table`, the evaluation of generated scene sets with the physics
+//! R_out, Col_obj, CKL, and the CKL that real layouts score) and, in `table`, the evaluation of generated scene sets with the physics
 //! rates.
 
+mod ckl_floor;
 mod contact;
 mod layout_metrics;
 mod penetration;
 mod table;
 
+pub use ckl_floor::{CklFloor, ckl_floor};
 pub use contact::{contact_iou, scene_contact_iou};
 pub use layout_metrics::{LayoutCounts, category_frequencies, category_kl};
 pub use penetration::{FurnitureField, SURFACE_POINTS, human_penetration, scene_penetration};

@@ -116,6 +116,13 @@ pub fn encode(scene: &Scene, window_center: DVec2, bounds: &Bounds, cfg: &ModelC
     (tokens, weights)
 }
 
+/// The largest class of one slot's token (`cfg.classes() - 1`: empty).
+pub fn slot_class(token: &[f32], cfg: &ModelConfig) -> usize {
+    (0..cfg.classes())
+        .max_by(|&a, &b| token[CLASS_OFFSET + a].total_cmp(&token[CLASS_OFFSET + b]))
+        .expect("at least one class")
+}
+
 /// The objects of generated tokens (slots × token_dim): one per slot whose largest class is not
 /// "empty", ids `o0`, `o1`, … in slot order.
 pub fn decode(tokens: &[f32], window_center: DVec2, ceiling: f64, bounds: &Bounds, cfg: &ModelConfig) -> Vec<Object> {
@@ -134,9 +141,7 @@ pub fn decode_slots(
     let categories = cfg.room_type.categories();
     let mut objects = Vec::new();
     for (slot, t) in tokens.chunks_exact(dim).enumerate() {
-        let class = (0..cfg.classes())
-            .max_by(|&a, &b| t[CLASS_OFFSET + a].total_cmp(&t[CLASS_OFFSET + b]))
-            .expect("at least one class");
+        let class = slot_class(t, cfg);
         let Some(&category) = categories.get(class) else { continue };
         let v = |k: usize| (t[k] as f64).clamp(-1.0, 1.0);
         let c = bounds.unscale_center([v(0), v(1), v(2)]);
