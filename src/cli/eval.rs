@@ -3,8 +3,8 @@
 //!
 //! The reference gives the category frequencies for CKL: its `test` split when it is a dataset,
 //! else all its scenes. Each `--pred` folder is one row. When the reference is a dataset with a
-//! `train` split, the table ends with the CKL that real training layouts score at the rows' size
-//! (the floor a perfect generator would reach; `eval::ckl_floor`).
+//! `train` split, the text table ends with the CKL that real training layouts score at the rows'
+//! size (the floor a perfect generator would reach; `eval::ckl_floor`); `--json` leaves it out.
 
 use super::output::{print_json, print_text};
 use super::{ExitStatus, GlobalArgs};
@@ -104,7 +104,6 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
         }
         rows.push(row);
     }
-    let floors = ckl_floors(&args.reference.join("train"), test.is_dir(), &rows, room, &freq)?;
     if let Some(out) = &args.out {
         let mut text = serde_json::to_string_pretty(&rows)?;
         text.push('\n');
@@ -115,7 +114,7 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
         print_json(&rows)?;
     } else if global.quiet == 0 {
         print_text(&table(&rows))?;
-        for f in &floors {
+        for f in ckl_floors(&args.reference, &rows, room, &freq)? {
             print_text(&format!(
                 "CKL of {} real layouts drawn from the train split ({} draws): mean {:.4}, p10 {:.4}, p90 {:.4}\n",
                 f.layouts, f.draws, f.mean, f.p10, f.p90
@@ -128,19 +127,14 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
 /// Draws of real layouts per floor.
 const FLOOR_DRAWS: usize = 200;
 
-/// The CKL floor for each distinct row size, from the dataset's train split (none for a plain
-/// folder reference or a dataset without one).
-fn ckl_floors(
-    train: &Path,
-    dataset: bool,
-    rows: &[EvalRow],
-    room: RoomType,
-    freq: &[f64],
-) -> anyhow::Result<Vec<CklFloor>> {
-    if !dataset || !train.is_dir() {
+/// The CKL floor for each distinct row size, from the `reference` dataset's train split (none for
+/// a plain folder or a dataset without test and train splits).
+fn ckl_floors(reference: &Path, rows: &[EvalRow], room: RoomType, freq: &[f64]) -> anyhow::Result<Vec<CklFloor>> {
+    let train = reference.join("train");
+    if !reference.join("test").is_dir() || !train.is_dir() {
         return Ok(Vec::new());
     }
-    let pool = load_all(train)?;
+    let pool = load_all(&train)?;
     let mut sizes: Vec<usize> = rows.iter().map(|r| r.scenes).collect();
     sizes.sort_unstable();
     sizes.dedup();

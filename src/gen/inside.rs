@@ -44,9 +44,9 @@ pub(super) fn worst_offence(b: &OBox, polygon: &Polygon) -> Option<(f64, DVec2)>
     };
     for p in b.footprint() {
         let inside = polygon.contains(p);
-        let distance = polygon.distance_to_boundary(p);
+        let q = polygon.nearest_boundary_point(p);
+        let distance = p.distance(q);
         let excess = if inside { CLEARANCE - distance } else { distance + CLEARANCE };
-        let q = nearest_boundary_point(polygon, p);
         let inward = if inside { p - q } else { q - p };
         consider(excess, inward.try_normalize().unwrap_or(DVec2::ZERO) * excess);
     }
@@ -65,16 +65,4 @@ pub(super) fn worst_offence(b: &OBox, polygon: &Polygon) -> Option<(f64, DVec2)>
         consider(exit.x.min(exit.y) + CLEARANCE, push);
     }
     worst
-}
-
-pub(super) fn nearest_boundary_point(polygon: &Polygon, p: DVec2) -> DVec2 {
-    polygon
-        .edges()
-        .map(|(a, b)| {
-            let ab = b - a;
-            let t = ((p - a).dot(ab) / ab.length_squared().max(1e-18)).clamp(0.0, 1.0);
-            a + ab * t
-        })
-        .min_by(|x, y| x.distance_squared(p).total_cmp(&y.distance_squared(p)))
-        .unwrap_or(p)
 }

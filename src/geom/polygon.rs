@@ -86,6 +86,14 @@ impl Polygon {
         self.edges().map(|(a, b)| point_segment_distance(p, a, b)).fold(f64::INFINITY, f64::min)
     }
 
+    /// The boundary point nearest to `p` (`p` itself for a polygon without edges).
+    pub fn nearest_boundary_point(&self, p: DVec2) -> DVec2 {
+        self.edges()
+            .map(|(a, b)| closest_point_on_segment(p, a, b))
+            .min_by(|x, y| x.distance_squared(p).total_cmp(&y.distance_squared(p)))
+            .unwrap_or(p)
+    }
+
     /// Signed distance to the boundary: negative inside, positive outside.
     pub fn signed_distance(&self, p: DVec2) -> f64 {
         let d = self.distance_to_boundary(p);
@@ -171,10 +179,15 @@ impl Polygon {
 
 /// Distance from `p` to the segment `a`–`b`.
 pub fn point_segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {
+    p.distance(closest_point_on_segment(p, a, b))
+}
+
+/// The point of the segment `a`–`b` nearest to `p`.
+pub fn closest_point_on_segment(p: DVec2, a: DVec2, b: DVec2) -> DVec2 {
     let ab = b - a;
     let len2 = ab.length_squared();
     let t = if len2 == 0.0 { 0.0 } else { ((p - a).dot(ab) / len2).clamp(0.0, 1.0) };
-    p.distance(a + ab * t)
+    a + ab * t
 }
 
 fn orient(a: DVec2, b: DVec2, c: DVec2) -> f64 {
