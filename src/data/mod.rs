@@ -26,7 +26,7 @@ pub use calibrate_dataset::{CalibrationReport, Unfixable, calibrate_dataset, rea
 pub use error::DataError;
 pub use floor_gen::{Shape, area_range, sample_floor};
 pub use import::{floor_outline, import_dataset, import_room};
-pub use people::{WALK_FPS, contact_pose, misplace, translate};
+pub use people::{WALK_FPS, contact_pose, contact_probability, misplace, translate};
 pub use rng::Rng;
 pub use rooms::{RoomRecord, furnish, generate_room, sample_categories};
 pub use stats::{DATASET_FORMAT, DatasetStats, SplitStats};

@@ -151,7 +151,13 @@ pub fn contact_humans(layout: &Layout, objects: &[Object], rng: &mut Rng) -> Vec
 }
 
 fn probability(p: &Placed) -> f64 {
-    match p.category.group() {
+    contact_probability(p.category)
+}
+
+/// The chance that the data puts a contact person on a piece of `category` (before choosing the
+/// action among its affordances).
+pub fn contact_probability(category: Category) -> f64 {
+    match category.group() {
         Group::Bed => 0.85,
         Group::Sofa => 0.7,
         Group::Chair | Group::Stool => 0.45,

@@ -77,10 +77,28 @@ pub fn catalog_items(category: Category) -> &'static [CatalogItem] {
     CATALOG.get_or_init(load).get(&category).map(Vec::as_slice).unwrap_or(&[])
 }
 
+/// The lowest and highest of `category`'s real pieces (m); (0, ∞) for a category without any.
+pub fn height_range(category: Category) -> (f64, f64) {
+    let heights = catalog_items(category).iter().map(|i| i.size[2]);
+    let (lo, hi) = heights.fold((f64::INFINITY, 0.0_f64), |(lo, hi), h| (lo.min(h), hi.max(h)));
+    if lo.is_finite() { (lo, hi) } else { (0.0, f64::INFINITY) }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use glam::DVec3;
+
+    #[test]
+    fn height_range_spans_the_real_pieces() {
+        // catalog.csv's double beds: 52.8 cm (a low platform bed) to 116 cm (a headboard).
+        let (lo, hi) = height_range(Category::DoubleBed);
+        assert!((lo - 0.528).abs() < 1e-9 && (hi - 1.16).abs() < 1e-9, "{lo} {hi}");
+        for &c in Category::ALL {
+            let (lo, hi) = height_range(c);
+            assert!(catalog_items(c).iter().all(|i| (lo..=hi).contains(&i.size[2])), "{c}");
+        }
+    }
 
     #[test]
     fn every_category_has_real_pieces_with_sane_sizes() {

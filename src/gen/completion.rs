@@ -2,19 +2,24 @@
 //! where no generated object can hold them gets a piece of real furniture placed the way the
 //! calibrated data places one under such a person.
 //!
-//! - A sitter gets a seat of the category the room already seats people on (else a chair, an
-//!   armchair or a dining chair for bedrooms, living and dining rooms), facing like the sitter, its
-//!   seat at the top of the sitter's support volume, the backrest clear of the sitter's back.
-//! - A sleeper gets a bed along the body (bedrooms) or a sofa with the body along its seat (living
-//!   and dining rooms), the mattress or seat at the box's bottom.
-//! - A toucher gets a piece in front of them, the pressed volume just inside its front face: a
-//!   cabinet (nightstand in bedrooms) with its top just above that volume for a palm below 1 m, a
-//!   wardrobe (bookshelf outside bedrooms) above.
+//! - A sitter gets a seat of the category the room already seats people on, else a chair, stool or
+//!   sofa drawn as the data gives sitters one (`drawn`), facing like the sitter, its seat at the
+//!   top of the sitter's support volume, the backrest clear of the sitter's back.
+//! - A sleeper gets a bed along the body (the room's bed category, else one drawn like a seat) in
+//!   bedrooms, or a sofa with the body along its seat in living and dining rooms, the mattress or
+//!   seat at the box's bottom.
+//! - A toucher gets a piece in front of them, drawn among those up to 1 m tall for a palm below
+//!   1 m (its top just above the pressed volume) and among the taller ones above, the pressed
+//!   volume just inside its front face.
+//!
+//! The draws follow the data's own rates, so that added pieces keep the room type's category mix
+//! (always a chair for a bedroom sitter made chairs twice as common as in the data).
 //!
 //! Sizes are the median of the category's real pieces (the furniture catalog), widened or deepened to
 //! cover the box and stretched in height to meet it. Nothing is added beyond the room type's object
 //! limit. This module only makes the objects; polishing moves them with the rest.
 
+use crate::data::{Rng, contact_probability, target_frequencies};
 use crate::furniture::{catalog_items, template_of};
 use crate::geom::{OBox, facing, wrap_angle};
 use crate::human::ContactBox;
@@ -129,27 +134,43 @@ fn category_for(scene: &Scene, contact: &ContactBox) -> Option<Category> {
         }
         best.map(|(_, c)| c)
     };
+    let low_touch = contact.obox.center.z <= TOP_TOUCH_HEIGHT;
     let chosen = match contact.action {
-        Action::Sit => present(&[Group::Chair, Group::Stool]).unwrap_or(match room {
-            RoomType::Bedroom => Category::Chair,
-            RoomType::Living => Category::Armchair,
-            RoomType::Dining => Category::DiningChair,
-        }),
+        Action::Sit => present(&[Group::Chair, Group::Stool])
+            .or_else(|| drawn(room, contact, |c| matches!(c.group(), Group::Chair | Group::Stool | Group::Sofa))),
         Action::Lie => match room {
-            RoomType::Bedroom => present(&[Group::Bed]).unwrap_or(Category::DoubleBed),
-            RoomType::Living | RoomType::Dining => present(&[Group::Sofa]).unwrap_or(Category::MultiSeatSofa),
+            RoomType::Bedroom => present(&[Group::Bed]).or_else(|| drawn(room, contact, |c| c.group() == Group::Bed)),
+            RoomType::Living | RoomType::Dining => present(&[Group::Sofa]).or(Some(Category::MultiSeatSofa)),
         },
-        Action::Touch if contact.obox.center.z <= TOP_TOUCH_HEIGHT => match room {
-            RoomType::Bedroom => Category::Nightstand,
-            RoomType::Living | RoomType::Dining => Category::Cabinet,
-        },
-        Action::Touch => match room {
-            RoomType::Bedroom => Category::Wardrobe,
-            RoomType::Living | RoomType::Dining => Category::Bookshelf,
-        },
+        // A low palm rests on the top of a piece up to 1 m tall, a high one on the front of a taller one.
+        Action::Touch => drawn(room, contact, |c| (median_size(c)[2] <= TOP_TOUCH_HEIGHT) == low_touch),
         Action::Walk | Action::Stand => return None,
-    };
+    }?;
     (room.categories().contains(&chosen) && chosen.affords(contact.action)).then_some(chosen)
+}
+
+/// A category of `room` that `accepts`, drawn as often as the data gives a person doing
+/// `contact`'s action such a piece: its 3D-FRONT frequency × the chance the data puts a contact
+/// person on it × the action's share of its affordances. The draw is seeded by where the box is,
+/// so the same scene always gets the same piece.
+fn drawn(room: RoomType, contact: &ContactBox, accepts: impl Fn(Category) -> bool) -> Option<Category> {
+    let frequencies = target_frequencies(room);
+    let weights: Vec<f64> = room
+        .categories()
+        .iter()
+        .zip(&frequencies)
+        .map(|(&c, &f)| {
+            let total: f64 = c.affordances().iter().map(|&a| c.affordance_probability(a)).sum();
+            let share = if total > 0.0 { c.affordance_probability(contact.action) / total } else { 0.0 };
+            if accepts(c) { f * contact_probability(c) * share } else { 0.0 }
+        })
+        .collect();
+    if weights.iter().all(|w| *w <= 0.0) {
+        return None;
+    }
+    let at = contact.obox.center;
+    let seed = [at.x, at.y, at.z].iter().fold(0u64, |h, v| h.rotate_left(21) ^ ((v * 1e4).round() as i64 as u64));
+    Some(room.categories()[Rng::new(seed).weighted(&weights)])
 }
 
 /// The median width, depth and height of the category's real pieces.
@@ -215,6 +236,35 @@ mod tests {
         }
         assert_eq!(found.len(), 3, "{room} {action:?}");
         found
+    }
+
+    #[test]
+    fn new_pieces_follow_the_data_mix_and_a_place_always_gets_the_same_one() {
+        let mut scene = generate_room(RoomType::Bedroom, 3, 0, false).scene;
+        scene.objects.clear();
+        let boxed_at = |action: Action, x: f64, y: f64, z: f64| ContactBox {
+            human: "h0".into(),
+            action,
+            frames: [0, 1],
+            obox: OBox::new(DVec3::new(x, y, z), DVec3::new(0.4, 0.4, 0.1), 0.0),
+        };
+        let mut seats = std::collections::BTreeMap::new();
+        for k in 0..400 {
+            let b = boxed_at(Action::Sit, 1.0 + 0.013 * k as f64, 2.0 + 0.007 * k as f64, 0.4);
+            let c = category_for(&scene, &b).unwrap();
+            assert_eq!(category_for(&scene, &b), Some(c), "the same place, the same piece");
+            assert!(matches!(c.group(), Group::Chair | Group::Stool | Group::Sofa) && c.affords(Action::Sit), "{c}");
+            *seats.entry(c).or_insert(0) += 1;
+        }
+        // Bedroom sitters in the data mostly sit on chairs, but not only (sofas, stools, armchairs).
+        let chairs = seats[&Category::Chair];
+        assert!(seats.values().all(|&n| n <= chairs) && chairs < 400 && seats.len() >= 3, "{seats:?}");
+        for (z, tall) in [(0.8, false), (1.3, true)] {
+            for k in 0..50 {
+                let c = category_for(&scene, &boxed_at(Action::Touch, 1.0 + 0.03 * k as f64, 2.0, z)).unwrap();
+                assert_eq!(median_size(c)[2] > TOP_TOUCH_HEIGHT, tall, "{c} for a palm at {z} m");
+            }
+        }
     }
 
     fn turn_distance(a: f64, b: f64, period: f64) -> f64 {

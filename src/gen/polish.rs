@@ -31,7 +31,7 @@ use super::completion::{back_gap, height_for_surface, support_for};
 use super::inside::{CLEARANCE, fits_inside, inside_push, worst_offence};
 use super::overlaps::{narrow_by, resolve_overlaps};
 use crate::eval::contact_iou;
-use crate::furniture::{PartRole, template};
+use crate::furniture::{PartRole, height_range, template};
 use crate::geom::{OBox, intersection_volume, iou_3d};
 use crate::human::{Conditions, ContactBox};
 use crate::scene::{Action, Group, Object, Scene};
@@ -377,8 +377,19 @@ fn facing_yaw(o: &Object, contact: &ContactBox) -> Option<f64> {
     match (o.category.group(), contact.action) {
         (Group::Chair | Group::Stool | Group::Sofa, Action::Sit) => Some(contact.obox.yaw),
         (Group::Sofa, Action::Lie) => Some(contact.obox.yaw + std::f64::consts::FRAC_PI_2),
+        // A quarter turn where the sitter faces along the bed: the data seats people on its sides.
+        (Group::Bed, Action::Sit) => {
+            let f = bed_local_facing(o, contact);
+            (f.y.abs() > f.x.abs()).then_some(o.yaw + std::f64::consts::FRAC_PI_2)
+        }
         _ => None,
     }
+}
+
+/// The way `contact`'s person faces, in `o`'s frame (unit).
+fn bed_local_facing(o: &Object, contact: &ContactBox) -> DVec2 {
+    let yaw = contact.obox.yaw - o.yaw;
+    DVec2::new(-yaw.sin(), yaw.cos())
 }
 
 /// Fits a floor-standing object to `contact`: a seat's or bed's surface goes to the top of a sitter's
@@ -393,10 +404,14 @@ fn fit_size(o: &mut Object, contact: &ContactBox, back: f64) -> bool {
     let top = contact.obox.z_range().1;
     let surface = template(o).surface.filter(|_| matches!(contact.action, Action::Sit | Action::Lie));
     let height = match surface {
-        Some(_) => height_for_surface(o.category, o.size, top),
-        None => o.size[2].max(top),
+        // Any height real pieces of the category have, give or take MAX_GROW_HEIGHT.
+        Some(_) => {
+            let (lo, hi) = height_range(o.category);
+            Some(height_for_surface(o.category, o.size, top).clamp(lo - MAX_GROW_HEIGHT, hi + MAX_GROW_HEIGHT))
+        }
+        None => Some(o.size[2].max(top)).filter(|h| h - o.size[2] <= MAX_GROW_HEIGHT),
     };
-    if (height - o.size[2]).abs() <= MAX_GROW_HEIGHT {
+    if let Some(height) = height {
         o.size[2] = height;
         o.center[2] = height * 0.5;
     }
@@ -420,8 +435,34 @@ fn holding_region(o: &Object, contact: &ContactBox, back: f64) -> (DVec2, DVec2)
     let Some(surface) = template(o).surface.filter(|_| matches!(action, Action::Sit | Action::Lie)) else {
         return (-half, half);
     };
+    if action == Action::Sit && o.category.group() == Group::Bed {
+        return bed_edge_region(o, contact, (surface.min, surface.max));
+    }
     let backed = action == Action::Sit && matches!(o.category.group(), Group::Chair | Group::Sofa);
     (surface.min + DVec2::new(0.0, if backed { back } else { 0.0 }), surface.max)
+}
+
+/// How far a bed sitter's support box may overhang the edge they sit on (m): the box reaches a
+/// third down the thighs, which the data seats 20 cm from the edge.
+const BED_EDGE_OVERHANG: f64 = 0.1;
+/// How far behind the edge the front of a bed sitter's support box may be (m).
+const BED_EDGE_BAND: f64 = 0.05;
+
+/// Where a bed sitter's support box must be (local min, max corners): against the edge of the
+/// mattress they face, so that their lower legs hang outside the bed, not in it.
+fn bed_edge_region(o: &Object, contact: &ContactBox, (mut lo, mut hi): (DVec2, DVec2)) -> (DVec2, DVec2) {
+    let f = bed_local_facing(o, contact);
+    let k = if f.x.abs() >= f.y.abs() { 0 } else { 1 };
+    let (box_lo, box_hi) = local_extent(&contact.obox, &o.obox());
+    let reach = box_hi[k] - box_lo[k] + BED_EDGE_OVERHANG + BED_EDGE_BAND;
+    if f[k] > 0.0 {
+        hi[k] += BED_EDGE_OVERHANG;
+        lo[k] = lo[k].max(hi[k] - reach);
+    } else {
+        lo[k] -= BED_EDGE_OVERHANG;
+        hi[k] = hi[k].min(lo[k] + reach);
+    }
+    (lo, hi)
 }
 
 /// The contact box's footprint corners in `o`'s frame: (min, max) per axis.
@@ -637,6 +678,66 @@ mod tests {
             assert_eq!(narrow_off_paths(&mut scene, &cond, &[holds]), 0);
             assert_eq!(scene.objects[0], cabinet(center));
         }
+    }
+
+    #[test]
+    fn a_bed_on_the_wrong_side_of_its_sitter_goes_behind_them() {
+        let mut checked = 0;
+        for index in 0..40 {
+            let mut scene = generate_room(RoomType::Bedroom, 5, index, false).scene;
+            let boxes = Conditions::contact_boxes_of(&scene);
+            let Some((sit, bed)) = boxes.iter().filter(|b| b.action == Action::Sit).find_map(|b| {
+                let bed = scene.objects.iter().find(|o| {
+                    o.category.group() == Group::Bed && contact_iou(&b.obox, std::slice::from_ref(*o)) > 0.9
+                })?;
+                Some((b.clone(), bed.clone()))
+            }) else {
+                continue;
+            };
+            // The bed moved across, in front of the sitter: now they sit on its far edge facing in,
+            // their lower legs in the mattress.
+            let facing = DVec2::new(-sit.obox.yaw.sin(), sit.obox.yaw.cos());
+            let mut moved = bed.clone();
+            shift(&mut moved, facing * (bed.size[0] - 0.4));
+            if !fits_inside(&moved.obox(), &scene.floor_plan.polygon()) {
+                continue;
+            }
+            let human = scene.humans.iter().find(|h| h.id == sit.human).unwrap().clone();
+            scene.humans = vec![human.clone()];
+            scene.objects = vec![moved];
+            let feet = ["left_ankle", "right_ankle", "left_toe", "right_toe"]
+                .map(|n| human.joint_at(0, human.skeleton.joint(n).unwrap()).truncate());
+            assert!(feet.iter().any(|p| scene.objects[0].obox().footprint_contains(*p)));
+            polish_scene(&mut scene, 30);
+            let o = &scene.objects[0].obox();
+            assert!(feet.iter().all(|p| !o.footprint_contains(*p)), "index {index}: feet still in the bed {o:?}");
+            assert!(contact_iou(&sit.obox, &scene.objects) > 0.5, "index {index}: the sitter lost the bed");
+            checked += 1;
+        }
+        assert!(checked >= 2, "{checked} rooms with a bed sitter checked");
+    }
+
+    #[test]
+    fn a_bed_too_tall_for_its_sleeper_comes_down_to_them() {
+        let (mut scene, index) = (0..40)
+            .map(|i| (generate_room(RoomType::Bedroom, 5, i, false).scene, i))
+            .find(|(s, _)| Conditions::contact_boxes_of(s).iter().any(|b| b.action == Action::Lie))
+            .expect("a bedroom with a sleeper");
+        let lie = Conditions::contact_boxes_of(&scene).into_iter().find(|b| b.action == Action::Lie).unwrap();
+        let bed = scene
+            .objects
+            .iter()
+            .position(|o| o.category.group() == Group::Bed && contact_iou(&lie.obox, std::slice::from_ref(o)) > 0.9)
+            .unwrap();
+        let surface = |o: &Object| template(o).surface.unwrap().height;
+        let right = surface(&scene.objects[bed]);
+        // 25 cm too tall: more than the 15 cm a piece may grow or shrink, within real beds' heights.
+        let o = &mut scene.objects[bed];
+        o.size[2] = height_for_surface(o.category, o.size, right + 0.25);
+        o.center[2] = o.size[2] * 0.5;
+        polish_scene(&mut scene, 30);
+        let now = surface(&scene.objects[bed]);
+        assert!((now - right).abs() < 0.01, "room {index}: surface at {now}, the sleeper's support at {right}");
     }
 
     #[test]
