@@ -5,10 +5,14 @@
 //! pairs first, then nearest within 2 m; a chair or stool holds one person, a sofa or bed one per
 //! 55 cm of its length, tables and cabinets any number of touches. A box no object can hold gets a
 //! new piece of real furniture (`completion`). A chair, stool or sofa is turned to face like the
-//! first sitter it holds (its front the way they face), a sofa to lie along its sleeper. A seat's or
-//! bed's surface goes to the top of its person's support volume, other holders grow to the top of
-//! their box (at most 15 cm either way), and width and depth grow by at most 20 cm where the box
-//! needs it. Every round then (1) moves each holder by the smallest shift that puts its boxes'
+//! first sitter it holds (its front the way they face), a sofa to lie along its sleeper, a bed a
+//! quarter turn where its sitter faces along it (the data seats people on a bed's side, against the
+//! edge they face); then every piece is turned square to the walls (the longest wall's direction
+//! plus quarter turns; every piece of the data stands so, and a diagonal wardrobe or bed was what
+//! most walkers walked into). A seat's or bed's surface goes to the top of its person's support
+//! volume (within the heights of the category's real pieces, give or take 15 cm), other holders
+//! grow to the top of their box (at most 15 cm), and width and depth grow by at most 20 cm where
+//! the box needs it. Every round then (1) moves each holder by the smallest shift that puts its boxes'
 //! footprints on the part they must be on (a seat's surface clear of its backrest, a mattress, else
 //! the footprint) and pushes pieces out of people's way (where footprint and height meet a walking
 //! or standing body, or a sitter's or toucher's shins and feet for a piece solid to the floor,
@@ -23,8 +27,7 @@
 //! that survive are narrowed away or lose their smaller piece (`overlaps`; never a piece that holds
 //! a person).
 //!
-//! It never re-categorises objects, adds only within the room type's object limit, and turns only
-//! seats and sofas.
+//! It never re-categorises objects and adds only within the room type's object limit.
 
 use super::clearance::Clearance;
 use super::completion::{back_gap, height_for_surface, support_for};
@@ -32,7 +35,7 @@ use super::inside::{CLEARANCE, fits_inside, inside_push, worst_offence};
 use super::overlaps::{narrow_by, resolve_overlaps};
 use crate::eval::contact_iou;
 use crate::furniture::{PartRole, height_range, template};
-use crate::geom::{OBox, intersection_volume, iou_3d};
+use crate::geom::{OBox, intersection_volume, iou_3d, wrap_angle};
 use crate::human::{Conditions, ContactBox};
 use crate::scene::{Action, Group, Object, Scene};
 use glam::DVec2;
@@ -59,7 +62,7 @@ pub struct PolishReport {
     pub turned: usize,
     /// Objects added for people nothing held (`completion`).
     pub added: usize,
-    /// Pieces left poking out of the floor plan turned square to the walls.
+    /// Pieces turned square to the walls (the data's all stand square).
     pub squared: usize,
     /// Objects narrowed off the walkers' feet or out of an overlap (`overlaps`).
     pub narrowed: usize,
@@ -104,7 +107,7 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
         .zip(&start)
         .map(|(o, s)| DVec2::new(o.center[0], o.center[1]).distance(*s))
         .fold(0.0, f64::max);
-    report.squared = square_up(scene, &cond, &gaps, &holders);
+    report.squared += square_up(scene, &cond, &gaps, &holders);
     let holds: Vec<bool> = (0..scene.objects.len()).map(|i| holders.iter().any(|(_, h)| *h == i)).collect();
     report.narrowed += narrow_off_paths(scene, &cond, &holds);
     let overlaps = resolve_overlaps(scene, &holds);
@@ -124,6 +127,7 @@ fn polish_rounds(
     report: &mut PolishReport,
 ) {
     let polygon = scene.floor_plan.polygon();
+    let start_yaw: Vec<f64> = scene.objects.iter().map(|o| o.yaw).collect();
     let mut turned = vec![false; scene.objects.len()];
     for (b, i) in holders {
         let contact = &cond.contact_boxes[*b];
@@ -134,6 +138,14 @@ fn polish_rounds(
         report.resized += fit_size(&mut scene.objects[*i], contact, gaps[*b]) as usize;
     }
     report.turned += turned.iter().filter(|t| **t).count();
+    // The data's pieces all stand square to the walls; so do ours (seats the quarter turn nearest
+    // their sitter).
+    if let Some(wall) = longest_wall_direction(&polygon) {
+        for (o, start) in scene.objects.iter_mut().zip(&start_yaw) {
+            o.yaw = square_yaw(o.yaw, wall);
+            report.squared += (wrap_angle(o.yaw - start).abs() > 1e-3) as usize;
+        }
+    }
     let mobility: Vec<f64> = (0..scene.objects.len())
         .map(|i| if holders.iter().any(|(_, h)| *h == i) { ANCHORED_MOBILITY } else { 1.0 })
         .collect();
@@ -201,11 +213,7 @@ fn polish_rounds(
 /// 1.3 m.)
 fn square_up(scene: &mut Scene, cond: &Conditions, gaps: &[f64], holders: &[(usize, usize)]) -> usize {
     let polygon = scene.floor_plan.polygon();
-    let Some((a, b)) = polygon.edges().max_by(|x, y| (x.1 - x.0).length().total_cmp(&(y.1 - y.0).length())) else {
-        return 0;
-    };
-    let wall = (b - a).to_angle();
-    let quarter = std::f64::consts::FRAC_PI_2;
+    let Some(wall) = longest_wall_direction(&polygon) else { return 0 };
     let mut turned = 0;
     for i in 0..scene.objects.len() {
         if fits_inside(&scene.objects[i].obox(), &polygon) {
@@ -213,7 +221,7 @@ fn square_up(scene: &mut Scene, cond: &Conditions, gaps: &[f64], holders: &[(usi
         }
         let before = scene.objects[i].clone();
         let o = &mut scene.objects[i];
-        o.yaw = wall + ((o.yaw - wall) / quarter).round() * quarter;
+        o.yaw = square_yaw(o.yaw, wall);
         let held = held_by(holders, cond, gaps, i);
         if !held.is_empty() {
             let m = held.iter().map(|(b, gap)| containment_shift(b, *gap, o)).sum::<DVec2>() / held.len() as f64;
@@ -222,7 +230,7 @@ fn square_up(scene: &mut Scene, cond: &Conditions, gaps: &[f64], holders: &[(usi
         let w = inside_push(&o.obox(), &polygon);
         shift(o, w);
         if fits_inside(&o.obox(), &polygon) {
-            turned += 1;
+            turned += (o.yaw != before.yaw) as usize;
             continue;
         }
         // A piece a few centimetres too big for its place (square or not) is narrowed to fit.
@@ -240,6 +248,18 @@ fn square_up(scene: &mut Scene, cond: &Conditions, gaps: &[f64], holders: &[(usi
         }
     }
     turned
+}
+
+/// The direction (rad) of the floor plan's longest wall.
+fn longest_wall_direction(polygon: &crate::geom::Polygon) -> Option<f64> {
+    let (a, b) = polygon.edges().max_by(|x, y| (x.1 - x.0).length().total_cmp(&(y.1 - y.0).length()))?;
+    Some((b - a).to_angle())
+}
+
+/// The yaw nearest `yaw` among `wall` plus quarter turns.
+fn square_yaw(yaw: f64, wall: f64) -> f64 {
+    let quarter = std::f64::consts::FRAC_PI_2;
+    wall + ((yaw - wall) / quarter).round() * quarter
 }
 
 /// Narrows every standing piece that holds nobody off the walkers' feet (the free-space mask the
@@ -599,6 +619,20 @@ mod tests {
         assert_eq!(fixed.outside, 0, "{r:?}");
         assert!(fixed.colliding <= broken.colliding, "{fixed:?} vs {broken:?}");
         assert!(scene_contact_iou(&scene).unwrap() > iou - 0.05, "{} vs {iou}", scene_contact_iou(&scene).unwrap());
+    }
+
+    #[test]
+    fn every_piece_ends_square_to_the_walls() {
+        let mut scene = generate_room(RoomType::Bedroom, 4, 1, false).scene;
+        for (k, o) in scene.objects.iter_mut().enumerate() {
+            o.yaw += 0.05 + 0.1 * k as f64 % 0.6 - 0.3;
+        }
+        let r = polish_scene(&mut scene, 30);
+        assert!(r.squared >= scene.objects.len() - 1, "{r:?}");
+        for o in &scene.objects {
+            let off = o.yaw.rem_euclid(std::f64::consts::FRAC_PI_2);
+            assert!(off.min(std::f64::consts::FRAC_PI_2 - off) < 1e-9, "{} at {}", o.id, o.yaw);
+        }
     }
 
     #[test]
