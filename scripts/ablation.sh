@@ -3,7 +3,8 @@
 # none / +motion / +boundary / +object / all / all+phys guidance (one sample per test input, seed 0),
 # then all+polish and all+phys+polish (the default `all,polish` is sampling with `all` and polishing:
 # `shade-sim polish` on those folders gives the same files, tests/it/model.rs checks it), each folder
-# a row of `shade-sim eval` (Col_mot, R_out, Col_obj, contact IoU, physics rates).
+# a row of `shade-sim eval` (Col_mot, R_out, Col_obj, contact IoU, physics rates, and the mean of
+# the three layout metrics each over the unguided row's).
 # Usage: bash scripts/ablation.sh [DATA_DIR] [OUT_DIR] [ROOMS…]   (defaults: data out/ablation, all rooms)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -30,5 +31,5 @@ for room in "${rooms[@]}"; do
         dirs+=("$out/$room/$name+polish")
     done
     echo "## $room"
-    $bin --no-progress eval --pred "${dirs[@]}" --ref "$data/$room" --out "$out/$room.json"
+    $bin --no-progress eval --pred "${dirs[@]}" --ref "$data/$room" --out "$out/$room.json" --baseline none
 done

@@ -5,6 +5,7 @@
 //! else all its scenes. Each `--pred` folder is one row. When the reference is a dataset with a
 //! `train` split, the text table ends with the CKL that real training layouts score at the rows'
 //! size (the floor a perfect generator would reach; `eval::ckl_floor`); `--json` leaves it out.
+//! `--baseline NAME` adds each row's layout metrics relative to the row NAME (`layout_ratio`).
 
 use super::output::{print_json, print_text};
 use super::{ExitStatus, GlobalArgs};
@@ -30,6 +31,10 @@ pub struct EvalArgs {
     /// Also write the rows as JSON to this file (atomically).
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// The row (a --pred folder's name) the others' layout metrics are compared with: adds the
+    /// mean of Col_mot, R_out and Col_obj each over the baseline's (`layout_ratio`).
+    #[arg(long)]
+    pub baseline: Option<String>,
 }
 
 /// The scene files under `dir` (recursively, not stats.json / calibration.json), sorted; an error
@@ -77,6 +82,7 @@ fn physics(scenes: &[Scene]) -> PhysicsRates {
         ),
         unsupported_humans: rate(reports.iter().map(|r| r.count(ViolationKind::Unsupported)).sum(), contact),
         unstable_objects: rate(reports.iter().map(|r| r.count(ViolationKind::Unstable)).sum(), objects),
+        violating_scenes: rate(reports.iter().filter(|r| !r.is_clean()).count(), scenes.len()),
     }
 }
 
@@ -103,6 +109,15 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
             row.physics = Some(physics(&scenes));
         }
         rows.push(row);
+    }
+    if let Some(name) = &args.baseline {
+        let Some(base) = rows.iter().find(|r| &r.name == name).cloned() else {
+            let names: Vec<&str> = rows.iter().map(|r| r.name.as_str()).collect();
+            anyhow::bail!("--baseline {name}: no such row (rows: {})", names.join(", "));
+        };
+        for r in &mut rows {
+            r.layout_ratio = Some(r.layout_ratio_to(&base));
+        }
     }
     if let Some(out) = &args.out {
         let mut text = serde_json::to_string_pretty(&rows)?;
@@ -142,18 +157,24 @@ fn ckl_floors(reference: &Path, rows: &[EvalRow], room: RoomType, freq: &[f64]) 
 }
 
 fn table(rows: &[EvalRow]) -> String {
+    let ratio = rows.iter().any(|r| r.layout_ratio.is_some());
     let mut t = String::from(
-        "method               scenes  contact IoU↑  Col_mot↓  R_out↓  Col_obj↓  CKL↓    E_pen↓  pen. scenes↓  unsupported↓  unstable↓\n",
+        "method               scenes  contact IoU↑  Col_mot↓  R_out↓  Col_obj↓  CKL↓    E_pen↓  pen. scenes↓  unsupported↓  unstable↓  violating↓",
     );
+    t.push_str(if ratio { "  layout÷base↓\n" } else { "\n" });
     for r in rows {
         let p = r.physics.map_or_else(
-            || "             -             -          -".to_string(),
+            || "             -             -          -           -".to_string(),
             |p| {
-                format!("  {:>12.3}  {:>12.3}  {:>9.3}", p.penetrating_scenes, p.unsupported_humans, p.unstable_objects)
+                format!(
+                    "  {:>12.3}  {:>12.3}  {:>9.3}  {:>10.3}",
+                    p.penetrating_scenes, p.unsupported_humans, p.unstable_objects, p.violating_scenes
+                )
             },
         );
+        let q = r.layout_ratio.map_or_else(String::new, |q| format!("  {q:>12.3}"));
         t.push_str(&format!(
-            "{:<20} {:>6}  {:>12.3}  {:>8.3}  {:>6.3}  {:>8.3}  {:>6.3}  {:>6.2}{p}\n",
+            "{:<20} {:>6}  {:>12.3}  {:>8.3}  {:>6.3}  {:>8.3}  {:>6.3}  {:>6.2}{p}{q}\n",
             r.name, r.scenes, r.contact_iou, r.col_mot, r.r_out, r.col_obj, r.ckl, r.e_pen
         ));
     }

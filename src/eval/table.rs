@@ -15,6 +15,9 @@ pub struct PhysicsRates {
     pub unsupported_humans: f64,
     /// Unstable objects / objects.
     pub unstable_objects: f64,
+    /// Scenes with a violation of any kind (those `shade-sim check` fails) / scenes.
+    #[serde(default)]
+    pub violating_scenes: f64,
 }
 
 /// The metrics of one set of scenes (one row of Table 1).
@@ -38,6 +41,24 @@ pub struct EvalRow {
     pub e_pen: f64,
     /// Physics rates, when checked.
     pub physics: Option<PhysicsRates>,
+    /// Against a baseline row (`eval --baseline`): the mean of this row's Col_mot, R_out and
+    /// Col_obj each over the baseline's (1 = as the baseline, lower is better; SHADE's three
+    /// layout metrics weighed alike).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub layout_ratio: Option<f64>,
+}
+
+impl EvalRow {
+    /// The mean of Col_mot, R_out and Col_obj each over `base`'s (a metric that is 0 in both
+    /// counts as 1; 0 in `base` only, as the row's value over 0.001).
+    pub fn layout_ratio_to(&self, base: &EvalRow) -> f64 {
+        let ratio = |a: f64, b: f64| match (a, b) {
+            (a, b) if b > 0.0 => a / b,
+            (a, _) if a > 0.0 => a / 0.001,
+            _ => 1.0,
+        };
+        (ratio(self.col_mot, base.col_mot) + ratio(self.r_out, base.r_out) + ratio(self.col_obj, base.col_obj)) / 3.0
+    }
 }
 
 /// The metrics of `scenes` (all of `room`) against `reference` category frequencies.
@@ -66,5 +87,36 @@ pub fn evaluate(name: &str, scenes: &[Scene], room: RoomType, reference: &[f64])
         ckl: category_kl(reference, &q),
         e_pen: if scenes.is_empty() { 0.0 } else { pen / scenes.len() as f64 },
         physics: None,
+        layout_ratio: None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(col_mot: f64, r_out: f64, col_obj: f64) -> EvalRow {
+        EvalRow {
+            name: String::new(),
+            scenes: 1,
+            contact_iou: 0.0,
+            col_mot,
+            r_out,
+            col_obj,
+            ckl: 0.0,
+            e_pen: 0.0,
+            physics: None,
+            layout_ratio: None,
+        }
+    }
+
+    #[test]
+    fn layout_ratio_weighs_the_three_metrics_alike() {
+        let base = row(0.1, 0.4, 0.0);
+        // (0.05 / 0.1 + 0.1 / 0.4 + 1) / 3 for a metric 0 in both; 0.002 over a zero baseline counts
+        // as 0.002 / 0.001.
+        assert!((row(0.05, 0.1, 0.0).layout_ratio_to(&base) - (0.5 + 0.25 + 1.0) / 3.0).abs() < 1e-12);
+        assert!((row(0.1, 0.4, 0.002).layout_ratio_to(&base) - (1.0 + 1.0 + 2.0) / 3.0).abs() < 1e-12);
+        assert_eq!(base.layout_ratio_to(&base), 1.0);
     }
 }

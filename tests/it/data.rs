@@ -227,9 +227,18 @@ fn eval_command_prints_table_1_rows_and_calibration_improves_them() {
         cal.to_str().unwrap(),
         "--ref",
         cal.to_str().unwrap(),
+        "--baseline",
+        "raw",
     ]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let rows: Vec<shade_sim::eval::EvalRow> = serde_json::from_slice(&o.stdout).unwrap();
+    // Against itself 1; the calibrated rows have no layout defect: 0 for each metric the raw row has.
+    let raw_has = [rows[0].col_mot, rows[0].r_out, rows[0].col_obj].map(|m| if m > 0.0 { 0.0 } else { 1.0 });
+    assert_eq!(rows[0].layout_ratio, Some(1.0));
+    assert_eq!(rows[1].layout_ratio, Some(raw_has.iter().sum::<f64>() / 3.0));
+    for p in rows.iter().map(|r| r.physics.unwrap()) {
+        assert!(p.violating_scenes >= p.penetrating_scenes && p.violating_scenes <= 1.0, "{p:?}");
+    }
     assert_eq!((rows[0].name.as_str(), rows[1].name.as_str(), rows[0].scenes), ("raw", "cal", 30));
     assert!(rows[1].contact_iou > rows[0].contact_iou && rows[1].e_pen < rows[0].e_pen);
     let (p0, p1) = (rows[0].physics.unwrap(), rows[1].physics.unwrap());
@@ -245,4 +254,16 @@ fn eval_command_prints_table_1_rows_and_calibration_improves_them() {
         cal.to_str().unwrap(),
     ]);
     assert!(crate::stdout(&text).lines().nth(1).unwrap().starts_with("raw/test"), "{}", crate::stdout(&text));
+    let o = shade_sim(&[
+        "eval",
+        "--no-physics",
+        "--pred",
+        raw.to_str().unwrap(),
+        "--ref",
+        cal.to_str().unwrap(),
+        "--baseline",
+        "none",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--baseline none: no such row (rows: raw)"), "{}", stderr(&o));
 }
