@@ -28,6 +28,7 @@ mod schedule;
 mod shipped;
 pub mod tokens;
 pub mod train;
+mod walls;
 
 pub use adamw::{AdamW, AdamWConfig};
 pub use checkpoint::{Checkpoint, CheckpointMeta, TrainingInfo};

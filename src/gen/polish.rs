@@ -9,7 +9,10 @@
 //! quarter turn where its sitter faces along it (the data seats people on a bed's side, against the
 //! edge they face); then every piece is turned square to the walls (the longest wall's direction
 //! plus quarter turns; every piece of the data stands so, and a diagonal wardrobe or bed was what
-//! most walkers walked into). A seat's or bed's surface goes to the top of its person's support
+//! most walkers walked into), and every piece the data stands against a wall (beds, cabinets,
+//! shelves, sofas, desks, dressing and console tables) is put back against the nearest wall behind
+//! or in front of it, its back to it (`walls`; a piece holding people only backwards, within what
+//! its people allow). A seat's or bed's surface goes to the top of its person's support
 //! volume (within the heights of the category's real pieces, give or take 15 cm), other holders
 //! grow to the top of their box (at most 15 cm), and width and depth grow by at most 20 cm where
 //! the box needs it. Every round then (1) moves each holder by the smallest shift that puts its boxes'
@@ -33,6 +36,7 @@ use super::clearance::Clearance;
 use super::completion::{back_gap, height_for_surface, support_for};
 use super::inside::{CLEARANCE, fits_inside, inside_push, worst_offence};
 use super::overlaps::{narrow_by, resolve_overlaps};
+use super::walls::{stands_against_wall, to_nearest_wall, to_wall_behind};
 use crate::eval::contact_iou;
 use crate::furniture::{PartRole, height_range, template};
 use crate::geom::{OBox, intersection_volume, iou_3d, wrap_angle};
@@ -64,6 +68,8 @@ pub struct PolishReport {
     pub added: usize,
     /// Pieces turned square to the walls (the data's all stand square).
     pub squared: usize,
+    /// Pieces put back against a wall (`walls`; the data stands them so).
+    pub walled: usize,
     /// Objects narrowed to fit the floor plan, off the walkers' feet or out of an overlap (`overlaps`).
     pub narrowed: usize,
     /// Objects removed from an overlap nothing else undid (`overlaps`).
@@ -146,6 +152,7 @@ fn polish_rounds(
             report.squared += (wrap_angle(o.yaw - start).abs() > 1e-3) as usize;
         }
     }
+    report.walled += back_to_walls(scene, cond, gaps, holders);
     let mobility: Vec<f64> = (0..scene.objects.len())
         .map(|i| if holders.iter().any(|(_, h)| *h == i) { ANCHORED_MOBILITY } else { 1.0 })
         .collect();
@@ -243,6 +250,34 @@ fn fit_into_room(scene: &mut Scene, cond: &Conditions, gaps: &[f64], holders: &[
         }
     }
     narrowed
+}
+
+/// Puts every piece the data stands against a wall back against one (`walls`): a piece holding
+/// nobody turned to the nearest wall, a holder towards the wall behind it as far as its people stay
+/// on it. Returns how many pieces moved or turned.
+fn back_to_walls(scene: &mut Scene, cond: &Conditions, gaps: &[f64], holders: &[(usize, usize)]) -> usize {
+    let polygon = scene.floor_plan.polygon();
+    let mut walled = 0;
+    for i in 0..scene.objects.len() {
+        if !stands_against_wall(scene.objects[i].category) {
+            continue;
+        }
+        let held = held_by(holders, cond, gaps, i);
+        let o = &mut scene.objects[i];
+        let (yaw, m) = if held.is_empty() {
+            let Some(pose) = to_nearest_wall(&o.obox(), &polygon) else { continue };
+            pose
+        } else {
+            let Some(m) = to_wall_behind(&o.obox(), &polygon) else { continue };
+            (o.yaw, within_slack(o, &held, m))
+        };
+        if m.length() > 1e-3 || wrap_angle(yaw - o.yaw).abs() > 1e-3 {
+            walled += 1;
+        }
+        o.yaw = yaw;
+        shift(o, m);
+    }
+    walled
 }
 
 /// The direction (rad) of the floor plan's longest wall.
@@ -628,6 +663,26 @@ mod tests {
             let off = o.yaw.rem_euclid(std::f64::consts::FRAC_PI_2);
             assert!(off.min(std::f64::consts::FRAC_PI_2 - off) < 1e-9, "{} at {}", o.id, o.yaw);
         }
+    }
+
+    #[test]
+    fn a_wardrobe_left_in_the_middle_of_the_room_goes_back_to_a_wall() {
+        let mut scene = generate_room(RoomType::Bedroom, 3, 0, false).scene;
+        scene.humans.clear();
+        scene.floor_plan.polygon = vec![[0.0, 0.0], [4.0, 0.0], [4.0, 3.5], [0.0, 3.5]];
+        scene.objects = vec![Object {
+            id: "o0".into(),
+            category: crate::scene::Category::Wardrobe,
+            center: [2.0, 1.5, 1.0],
+            size: [1.6, 0.6, 2.0],
+            yaw: 0.2,
+        }];
+        let r = polish_scene(&mut scene, 30);
+        assert_eq!((r.squared, r.walled), (1, 1), "{r:?}");
+        // Square, its back (local −y) 5 cm from the south wall, the nearest one behind or in front.
+        let o = &scene.objects[0];
+        assert!(o.yaw.abs() < 1e-12, "{o:?}");
+        assert!((o.center[1] - 0.3 - 0.05).abs() < 1e-9 && (o.center[0] - 2.0).abs() < 1e-9, "{o:?}");
     }
 
     #[test]
