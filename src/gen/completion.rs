@@ -174,7 +174,7 @@ fn drawn(room: RoomType, contact: &ContactBox, accepts: impl Fn(Category) -> boo
 }
 
 /// The median width, depth and height of the category's real pieces.
-fn median_size(category: Category) -> [f64; 3] {
+pub(super) fn median_size(category: Category) -> [f64; 3] {
     let items = catalog_items(category);
     std::array::from_fn(|k| {
         let mut v: Vec<f64> = items.iter().map(|i| i.size[k]).collect();
