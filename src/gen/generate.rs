@@ -2,7 +2,7 @@
 //! decoding into shade-scene/1 scenes that keep the input's floor plan and humans.
 
 use super::dataset::HostBatch;
-use super::sampler::{Guidance, sample};
+use super::sampler::{Guidance, empty_projection_steps, sample};
 use super::{Checkpoint, Features, GenError, Schedule, tokens};
 use crate::data::Rng;
 use crate::human::Conditions;
@@ -20,13 +20,20 @@ pub struct Generator {
     /// The model.
     pub checkpoint: Checkpoint,
     schedule: Schedule,
+    empty_projection: bool,
 }
 
 impl Generator {
     /// A generator over `checkpoint`.
     pub fn new(checkpoint: Checkpoint) -> Generator {
         let schedule = Schedule::linear(checkpoint.meta.model.diffusion_steps);
-        Generator { checkpoint, schedule }
+        Generator { checkpoint, schedule, empty_projection: true }
+    }
+
+    /// The same generator without the sampler's empty-slot projection: the model's raw output, which
+    /// has 40–55 % more objects than the data ([`empty_projection_steps`]).
+    pub fn without_empty_projection(self) -> Generator {
+        Generator { empty_projection: false, ..self }
     }
 
     /// The seed of sample `k` of input `i` for the run seed `seed`.
@@ -84,6 +91,7 @@ impl Generator {
                 &self.schedule,
                 &cond,
                 &seeds,
+                if self.empty_projection { empty_projection_steps(self.schedule.steps()) } else { 0 },
                 guide.as_mut().map(|g| g.as_mut() as &mut dyn Guidance),
             )?;
             let per_item = meta.model.slots() * meta.model.token_dim();

@@ -23,12 +23,15 @@ pub trait Guidance {
     fn finish(&mut self, _item: usize, _scene: &mut crate::scene::Scene) {}
 }
 
-/// Samples a batch; `seeds[i]` drives item i. Returns the tokens (B × slots × token_dim).
+/// Samples a batch; `seeds[i]` drives item i. In steps t < `projection_steps` the empty slots of x̂0
+/// get zero attributes ([`empty_projection_steps`] is the default; 0 samples the model's raw
+/// output). Returns the tokens (B × slots × token_dim).
 pub fn sample(
     model: &Denoiser,
     schedule: &Schedule,
     cond: &CondTensors,
     seeds: &[u64],
+    projection_steps: usize,
     mut guidance: Option<&mut dyn Guidance>,
 ) -> Result<Vec<f32>, GenError> {
     let cfg = model.config();
@@ -50,7 +53,7 @@ pub fn sample(
         let eps = Tensor::from_vec(fast.forward(&mut prepared, &x.flatten_all()?.to_vec1()?, t), shape, &Device::Cpu)?;
         let ab = schedule.alpha_bars[t];
         let x0 = ((&x - (eps * (1.0 - ab).sqrt())?)? / ab.sqrt())?.clamp(-1f32, 1f32)?;
-        let x0 = if t < empty_projection_steps(schedule.steps()) { zero_empty_attributes(&x0, cfg)? } else { x0 };
+        let x0 = if t < projection_steps { zero_empty_attributes(&x0, cfg)? } else { x0 };
         let x0 = match guidance.as_deref_mut() {
             Some(g) => g.guide(&x0, t)?,
             None => x0,
