@@ -14,7 +14,7 @@ use common::median;
 use shade_sim::data::Rng;
 use shade_sim::generator::{
     AdamW, AdamWConfig, Bounds, CondTensors, Denoiser, FastDenoiser, Guidance, GuidanceConfig, ModelConfig, Params,
-    Schedule, SpatialGuidance, sample, tokens,
+    Schedule, SpatialGuidance, empty_projection_steps, sample, tokens,
 };
 use shade_sim::scene::RoomType;
 use shade_sim::scene::Scene;
@@ -62,7 +62,8 @@ fn setup() -> Setup {
 fn sample_once(s: &Setup, rng: &mut Rng) {
     let cond = conditions(&s.cfg, SAMPLE_BATCH, rng);
     let seeds: Vec<u64> = (0..SAMPLE_BATCH as u64).collect();
-    black_box(sample(&s.shipped, &s.schedule, &cond, &seeds, None).unwrap());
+    let projection = empty_projection_steps(s.schedule.steps());
+    black_box(sample(&s.shipped, &s.schedule, &cond, &seeds, projection, None).unwrap());
 }
 
 fn train_once(s: &Setup, adam: &mut AdamW, rng: &mut Rng) {

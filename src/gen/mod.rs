@@ -43,7 +43,7 @@ pub use model::{CondTensors, Denoiser, time_features};
 pub use params::Params;
 pub use phys_guidance::{PhysicsGuidance, physics_displacements};
 pub use polish::{PolishReport, polish_scene};
-pub use sampler::{Guidance, sample};
+pub use sampler::{Guidance, empty_projection_steps, sample};
 pub use schedule::Schedule;
 pub use shipped::{shipped_model, shipped_rooms};
 pub use tokens::Bounds;
