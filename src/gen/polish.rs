@@ -24,11 +24,12 @@
 //! plan (corners inside, and off an L-shaped room's inner corner). Holders move a fifth as much for
 //! overlaps and paths; the last third of the rounds leaves contacts alone and the last five paths,
 //! so the layout ends separated and inside. Rounds stop when nothing moves a millimetre. A box
-//! still less than half covered after that gets a new piece and a second pass of rounds. A piece
-//! still poking out of the floor plan is then moved back over its people and inside or narrowed by
-//! at most 10 cm, a piece holding nobody is narrowed off the walkers' feet where 10 cm do it, and overlaps
-//! that survive are narrowed away or lose their smaller piece (`overlaps`; never a piece that holds
-//! a person).
+//! still less than half covered after that gets a new piece and a second pass of rounds. A double
+//! bed still in people's way becomes a single bed where that clears some of the way. A piece still
+//! poking out of the floor plan is then moved back over its people and inside or narrowed by at
+//! most 10 cm, a piece holding nobody is narrowed off the walkers' feet where 10 cm do it, and
+//! overlaps that survive are narrowed away or lose their smaller piece (`overlaps`; never a piece
+//! that holds a person).
 //!
 //! It re-categorises nothing but a double bed in people's way, which may become a single bed, and
 //! adds only within the room type's object limit.
@@ -138,7 +139,15 @@ fn polish_rounds(
 ) {
     let polygon = scene.floor_plan.polygon();
     let start_yaw: Vec<f64> = scene.objects.iter().map(|o| o.yaw).collect();
-    let mut turned = vec![false; scene.objects.len()];
+    // A bed with a sleeper keeps its orientation whatever its sitters face (beds are not turned to
+    // sleepers: that made more bedrooms penetrate).
+    let mut turned: Vec<bool> = (0..scene.objects.len())
+        .map(|i| {
+            scene.objects[i].category.group() == Group::Bed
+                && holders.iter().any(|(b, h)| *h == i && cond.contact_boxes[*b].action == Action::Lie)
+        })
+        .collect();
+    let kept = turned.clone();
     for (b, i) in holders {
         let contact = &cond.contact_boxes[*b];
         if let Some(yaw) = facing_yaw(&scene.objects[*i], contact).filter(|_| !turned[*i]) {
@@ -147,7 +156,7 @@ fn polish_rounds(
         }
         report.resized += fit_size(&mut scene.objects[*i], contact, gaps[*b]) as usize;
     }
-    report.turned += turned.iter().filter(|t| **t).count();
+    report.turned += turned.iter().zip(&kept).filter(|(t, k)| **t && !**k).count();
     // The data's pieces all stand square to the walls; so do ours (seats the quarter turn nearest
     // their sitter).
     if let Some(wall) = longest_wall_direction(&polygon) {
