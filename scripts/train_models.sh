@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Reproduces the shipped models (models/MODEL_CARD.md): the calibrated datasets at SHADE's sizes,
 # then the three trainings, two at a time with one thread each (as fast per run as two threads on
-# this 2-core machine). About 60 minutes in all on a 2-core machine.
+# this 2-core machine): bedrooms 24,000 steps (about 50 minutes), living and dining rooms 12,000
+# (about 40 minutes each). About 95 minutes in all on a 2-core machine.
 # Usage: bash scripts/train_models.sh [DATA_DIR] [MODELS_DIR]   (defaults: data, models)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,12 +17,12 @@ for spec in bedroom:5689 living:2987 dining:2549; do
     $bin --no-progress -q calibrate --data "$data/$room-raw" --out "$data/$room"
 done
 train() {
-    local room="$1" resume=()
+    local room="$1" steps="$2" resume=()
     [ -f "$models/$room/train_state.json" ] && resume=(--resume)
-    RAYON_NUM_THREADS=1 $bin --no-progress train --data "$data/$room" --out "$models/$room" "${resume[@]}"
+    RAYON_NUM_THREADS=1 $bin --no-progress train --data "$data/$room" --out "$models/$room" --steps "$steps" "${resume[@]}"
 }
 # bedroom then dining on one core, living on the other.
-(train bedroom && train dining) &
+(train bedroom 24000 && train dining 12000) &
 first=$!
-train living
+train living 12000
 wait "$first"
