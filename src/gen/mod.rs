@@ -7,6 +7,7 @@
 //! Guidance terms themselves, physics and metrics live elsewhere.
 
 mod adamw;
+mod bed_swap;
 pub mod checkpoint;
 mod clearance;
 mod completion;

@@ -34,8 +34,9 @@
 //! It re-categorises nothing but a double bed in people's way, which may become a single bed, and
 //! adds only within the room type's object limit.
 
+use super::bed_swap::single_beds_off_paths;
 use super::clearance::Clearance;
-use super::completion::{back_gap, height_for_surface, median_size, support_for};
+use super::completion::{back_gap, height_for_surface, support_for};
 use super::inside::{CLEARANCE, fits_inside, inside_push, worst_offence};
 use super::overlaps::{narrow_by, resolve_overlaps};
 use super::walls::{stands_against_wall, to_nearest_wall, to_wall_behind};
@@ -43,7 +44,7 @@ use crate::eval::contact_iou;
 use crate::furniture::{PartRole, height_range, template};
 use crate::geom::{OBox, intersection_volume, iou_3d, wrap_angle};
 use crate::human::{Conditions, ContactBox};
-use crate::scene::{Action, Category, Group, Object, Scene};
+use crate::scene::{Action, Group, Object, Scene};
 use glam::DVec2;
 
 /// How far an object's height may grow to cover a contact box (m).
@@ -265,53 +266,6 @@ fn fit_into_room(scene: &mut Scene, cond: &Conditions, gaps: &[f64], holders: &[
     narrowed
 }
 
-/// Floor area (m²) a double bed must keep from people's way for `single_beds_off_paths` to swap it:
-/// below that, swapping bought few clean rooms and cost CKL (more single beds than the data has).
-const SWAP_BLOCKED_AREA: f64 = 0.02;
-
-/// Swaps each double bed still in people's way (at least `SWAP_BLOCKED_AREA`) after the rounds
-/// (`Clearance`) for a single bed of the median real width, cut from the side where it is in the
-/// way, where that clears part of the way, keeps what it holds as covered (a tenth off at most) and
-/// it holds at most one person. The model puts double beds where the data has narrower ones, and a
-/// double bed across a walkway was the commonest way a walker walked into a bed. Returns how many
-/// it swapped.
-fn single_beds_off_paths(
-    scene: &mut Scene,
-    cond: &Conditions,
-    gaps: &[f64],
-    clearance: &Clearance,
-    holders: &[(usize, usize)],
-) -> usize {
-    let width = median_size(Category::SingleBed)[0];
-    let mut swapped = 0;
-    for i in 0..scene.objects.len() {
-        let o = &scene.objects[i];
-        let held = held_by(holders, cond, gaps, i);
-        if o.category != Category::DoubleBed || o.size[0] <= width || held.len() > 1 {
-            continue;
-        }
-        let b = o.obox();
-        let blocked = clearance.blocked(&b, true);
-        if (blocked.len() as f64) * clearance.window().pixel_area() < SWAP_BLOCKED_AREA {
-            continue;
-        }
-        // Cut from the side the blocked pixels are on (local x).
-        let (ax, _) = b.axes();
-        let side = blocked.iter().map(|p| (*p - b.center.truncate()).dot(ax)).sum::<f64>().signum();
-        let mut single = o.clone();
-        single.category = Category::SingleBed;
-        single.size[0] = width;
-        shift(&mut single, -ax * side * (o.size[0] - width) * 0.5);
-        let covered = |x: &Object| held.iter().map(|(c, _)| contact_iou(&c.obox, std::slice::from_ref(x))).sum::<f64>();
-        let clears = clearance.blocked(&single.obox(), true).len() < blocked.len();
-        if clears && covered(&single) >= 0.9 * covered(o) {
-            scene.objects[i] = single;
-            swapped += 1;
-        }
-    }
-    swapped
-}
-
 /// Puts every piece the data stands against a wall back against one (`walls`): a piece holding
 /// nobody turned to the nearest wall, a holder towards the wall behind it as far as its people stay
 /// on it. Returns how many pieces moved or turned.
@@ -391,11 +345,16 @@ fn narrow_off_paths(scene: &mut Scene, cond: &Conditions, holds: &[bool]) -> usi
 }
 
 /// The contact boxes object `i` holds, each with its back gap.
-fn held_by<'a>(holders: &[(usize, usize)], cond: &'a Conditions, gaps: &[f64], i: usize) -> Vec<(&'a ContactBox, f64)> {
+pub(super) fn held_by<'a>(
+    holders: &[(usize, usize)],
+    cond: &'a Conditions,
+    gaps: &[f64],
+    i: usize,
+) -> Vec<(&'a ContactBox, f64)> {
     holders.iter().filter(|(_, h)| *h == i).map(|(b, _)| (&cond.contact_boxes[*b], gaps[*b])).collect()
 }
 
-fn shift(o: &mut Object, m: DVec2) {
+pub(super) fn shift(o: &mut Object, m: DVec2) {
     o.center[0] += m.x;
     o.center[1] += m.y;
 }
@@ -743,31 +702,6 @@ mod tests {
         let o = &scene.objects[0];
         assert!(o.yaw.abs() < 1e-12, "{o:?}");
         assert!((o.center[1] - 0.3 - 0.05).abs() < 1e-9 && (o.center[0] - 2.0).abs() < 1e-9, "{o:?}");
-    }
-
-    #[test]
-    fn a_double_bed_across_a_walkway_becomes_a_single_bed_cut_from_that_side() {
-        let mut scene = generate_room(RoomType::Bedroom, 3, 0, false).scene;
-        scene.humans.retain(|h| h.actions.iter().all(|a| a.action == Action::Walk));
-        let h = &scene.humans[0];
-        let p = h.joint_at(h.frames.len() / 2, h.skeleton.joint("pelvis").unwrap()).truncate();
-        // 1.8 m wide, its +x side 0.3 m past a walker's pelvis.
-        let bed = Object {
-            id: "o0".into(),
-            category: Category::DoubleBed,
-            center: [p.x + 0.3 - 0.9, p.y, 0.25],
-            size: [1.8, 2.0, 0.5],
-            yaw: 0.0,
-        };
-        scene.objects = vec![bed.clone()];
-        let cond = Conditions::of(&scene);
-        let clearance = Clearance::of(&scene, &cond.window);
-        let before = clearance.blocked(&bed.obox(), true).len();
-        assert_eq!(single_beds_off_paths(&mut scene, &cond, &[], &clearance, &[]), 1);
-        let o = &scene.objects[0];
-        assert_eq!((o.category, o.size[0]), (Category::SingleBed, median_size(Category::SingleBed)[0]));
-        assert!((o.center[0] - o.size[0] * 0.5 - (bed.center[0] - 0.9)).abs() < 1e-9, "the −x side stays: {o:?}");
-        assert!(clearance.blocked(&o.obox(), true).len() < before);
     }
 
     #[test]
