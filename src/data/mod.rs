@@ -28,7 +28,7 @@ pub use floor_gen::{Shape, area_range, sample_floor};
 pub use import::{floor_outline, import_dataset, import_room};
 pub use people::{WALK_FPS, contact_pose, contact_probability, misplace, translate};
 pub use rng::Rng;
-pub use rooms::{RoomRecord, furnish, generate_room, sample_categories};
+pub use rooms::{RoomRecord, furnish, generate_room, placed_against_wall, sample_categories};
 pub use stats::{DATASET_FORMAT, DatasetStats, SplitStats};
 pub use synth::{SynthConfig, split_of, synthesize, write_stats};
 pub use threedfront::{kl_divergence, target_frequencies};

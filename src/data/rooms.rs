@@ -135,8 +135,7 @@ pub fn furnish(layout: &mut Layout, room: RoomType, mut wanted: Vec<Category>, r
     let lamps: Vec<Category> = wanted.iter().copied().filter(|c| c.is_hanging()).collect();
     wanted.retain(|c| !c.is_hanging());
     for c in wanted {
-        let against_wall = matches!(c.group(), Group::Cabinet | Group::Shelf | Group::Sofa)
-            || matches!(c, Category::ConsoleTable | Category::Desk | Category::DressingTable);
+        let against_wall = placed_against_wall(c);
         group(layout, rng, &mut |l, r| {
             let size = super::layout::real_size(c, r);
             if against_wall { l.place_on_wall(c, size, r, 30) } else { l.place_free(c, size, r, 40) }
@@ -145,6 +144,13 @@ pub fn furnish(layout: &mut Layout, room: RoomType, mut wanted: Vec<Category>, r
     for (k, c) in lamps.into_iter().enumerate() {
         layout.place_lamp(c, anchors.get(k).copied(), rng);
     }
+}
+
+/// Whether the synthetic layouts stand a piece of `category` with its back against a wall, besides
+/// beds (which go against one with their nightstands first).
+pub fn placed_against_wall(category: Category) -> bool {
+    matches!(category.group(), Group::Cabinet | Group::Shelf | Group::Sofa)
+        || matches!(category, Category::ConsoleTable | Category::Desk | Category::DressingTable)
 }
 
 /// What the raw dataset records about a room besides the scene.

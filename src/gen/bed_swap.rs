@@ -18,9 +18,7 @@ const SWAP_BLOCKED_AREA: f64 = 0.02;
 /// Swaps each double bed still in people's way (at least `SWAP_BLOCKED_AREA`) after the rounds
 /// (`Clearance`) for a single bed of the median real width, cut from the side where it is in the
 /// way, where that clears part of the way, keeps what it holds as covered (a tenth off at most) and
-/// it holds at most one person. The model puts double beds where the data has narrower ones, and a
-/// double bed across a walkway was the commonest way a walker walked into a bed. Returns how many
-/// it swapped.
+/// it holds at most one person. Returns how many it swapped.
 pub(super) fn single_beds_off_paths(
     scene: &mut Scene,
     cond: &Conditions,
@@ -32,8 +30,11 @@ pub(super) fn single_beds_off_paths(
     let mut swapped = 0;
     for i in 0..scene.objects.len() {
         let o = &scene.objects[i];
+        if o.category != Category::DoubleBed || o.size[0] <= width {
+            continue;
+        }
         let held = held_by(holders, cond, gaps, i);
-        if o.category != Category::DoubleBed || o.size[0] <= width || held.len() > 1 {
+        if held.len() > 1 {
             continue;
         }
         let b = o.obox();
