@@ -4,7 +4,8 @@
 //! The reference gives the category frequencies for CKL: its `test` split when it is a dataset,
 //! else all its scenes. Each `--pred` folder is one row. When the reference is a dataset with a
 //! `train` split, the text table ends with the CKL that real training layouts score at the rows'
-//! size (the floor a perfect generator would reach; `eval::ckl_floor`); `--json` leaves it out.
+//! size (the floor a perfect generator would reach; `eval::ckl_floor`), and each row carries it as
+//! `ckl_floor` in `--json` and `--out`.
 //! `--baseline NAME` adds each row's layout metrics relative to the row NAME (`layout_ratio`).
 
 use super::output::{print_json, print_text};
@@ -119,6 +120,10 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
             r.layout_ratio = Some(r.layout_ratio_to(&base));
         }
     }
+    let floors = ckl_floors(&args.reference, &rows, room, &freq)?;
+    for r in &mut rows {
+        r.ckl_floor = floors.iter().find(|f| f.layouts == r.scenes).copied();
+    }
     if let Some(out) = &args.out {
         let mut text = serde_json::to_string_pretty(&rows)?;
         text.push('\n');
@@ -129,7 +134,7 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
         print_json(&rows)?;
     } else if global.quiet == 0 {
         print_text(&table(&rows))?;
-        for f in ckl_floors(&args.reference, &rows, room, &freq)? {
+        for f in &floors {
             print_text(&format!(
                 "CKL of {} real layouts drawn from the train split ({} draws): mean {:.4}, p10 {:.4}, p90 {:.4}\n",
                 f.layouts, f.draws, f.mean, f.p10, f.p90

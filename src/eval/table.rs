@@ -1,7 +1,7 @@
 //! One row of the evaluation table: the metrics of a set of generated scenes against reference
 //! category frequencies. Physics rates come from `sim` and are filled in by the caller.
 
-use super::{FurnitureField, LayoutCounts, category_frequencies, category_kl, contact_iou, human_penetration};
+use super::{CklFloor, FurnitureField, LayoutCounts, category_frequencies, category_kl, contact_iou, human_penetration};
 use crate::human::contact_boxes;
 use crate::scene::{RoomType, Scene};
 use serde::{Deserialize, Serialize};
@@ -46,6 +46,10 @@ pub struct EvalRow {
     /// layout metrics weighed alike).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub layout_ratio: Option<f64>,
+    /// What real layouts score on CKL at this row's size (`eval::ckl_floor`), when the caller
+    /// has a pool of them (`eval` with a dataset as reference).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ckl_floor: Option<CklFloor>,
 }
 
 impl EvalRow {
@@ -88,6 +92,7 @@ pub fn evaluate(name: &str, scenes: &[Scene], room: RoomType, reference: &[f64])
         e_pen: if scenes.is_empty() { 0.0 } else { pen / scenes.len() as f64 },
         physics: None,
         layout_ratio: None,
+        ckl_floor: None,
     }
 }
 
@@ -107,6 +112,7 @@ mod tests {
             e_pen: 0.0,
             physics: None,
             layout_ratio: None,
+            ckl_floor: None,
         }
     }
 

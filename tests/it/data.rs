@@ -254,6 +254,22 @@ fn eval_command_prints_table_1_rows_and_calibration_improves_them() {
         cal.to_str().unwrap(),
     ]);
     assert!(crate::stdout(&text).lines().nth(1).unwrap().starts_with("raw/test"), "{}", crate::stdout(&text));
+    // The CKL floor travels with a row in JSON: drawn from the reference's train split at the row's
+    // size, none for a row larger than that split.
+    let o = shade_sim(&[
+        "eval",
+        "--json",
+        "--no-physics",
+        "--pred",
+        raw.join("test").to_str().unwrap(),
+        "--ref",
+        cal.to_str().unwrap(),
+    ]);
+    let small: Vec<shade_sim::eval::EvalRow> = serde_json::from_slice(&o.stdout).unwrap();
+    let floor = small[0].ckl_floor.expect("the train split is larger than the test split");
+    assert_eq!((floor.layouts, floor.draws), (small[0].scenes, 200));
+    assert!(floor.p10 <= floor.mean && floor.mean <= floor.p90 && floor.mean > 0.0, "{floor:?}");
+    assert!(rows.iter().all(|r| r.ckl_floor.is_none()), "30 scenes is more than the train split holds");
     let o = shade_sim(&[
         "eval",
         "--no-physics",
