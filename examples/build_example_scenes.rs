@@ -77,17 +77,18 @@ const ROOMS: &[Room] = &[
         polygon: &[[0.0, 0.0], [5.0, 0.0], [5.0, 2.5], [3.0, 2.5], [3.0, 4.5], [0.0, 4.5]],
         height: 2.8,
         people: &[
-            Person { stature: 1.78, steps: &[Lie { at: [0.45, 3.25], surface: 0.45, facing: [0.0, -1.0] }] },
+            Person { stature: 1.78, steps: &[Lie { at: [0.6, 3.25], surface: 0.45, facing: [0.0, -1.0] }] },
             Person {
                 stature: 1.70,
                 steps: &[
-                    Walk(&[[2.6, 1.2], [3.9, 1.3], [4.3, 1.1]]),
-                    Sit { at: [4.3, 0.85], seat: 0.46, facing: [0.0, -1.0] },
+                    Walk(&[[2.6, 1.2], [3.9, 1.35], [4.3, 1.25]]),
+                    Stand { facing: [0.0, 1.0] },
+                    Sit { at: [4.3, 0.85], seat: 0.46, facing: [0.0, 1.0] },
                 ],
             },
             Person {
                 stature: 1.62,
-                steps: &[Touch { target: [1.25, 4.1, 0.56], facing: [0.0, 1.0], side: Side::Left }],
+                steps: &[Touch { target: [1.45, 4.1, 0.56], facing: [0.0, 1.0], side: Side::Left }],
             },
             Person {
                 stature: 1.75,
@@ -133,19 +134,20 @@ const ROOMS: &[Room] = &[
             Person {
                 stature: 1.80,
                 steps: &[
-                    Walk(&[[4.2, 6.8], [3.8, 5.6], [3.2, 5.3]]),
+                    Walk(&[[3.9, 4.5], [3.5, 5.5], [3.0, 6.0]]),
+                    Stand { facing: [0.0, -1.0] },
                     Sit { at: [3.0, 6.4], seat: 0.40, facing: [0.0, -1.0] },
                 ],
             },
             Person {
                 stature: 1.65,
-                steps: &[Touch { target: [1.5, 6.62, 1.3], facing: [0.0, 1.0], side: Side::Right }],
+                steps: &[Touch { target: [1.5, 6.4, 1.3], facing: [0.0, 1.0], side: Side::Right }],
             },
             Person {
                 stature: 1.77,
                 steps: &[
                     Walk(&[[5.5, 0.6], [6.8, 1.5], [7.0, 2.0]]),
-                    Touch { target: [7.62, 2.0, 0.78], facing: [1.0, 0.0], side: Side::Left },
+                    Touch { target: [7.45, 2.0, 0.78], facing: [1.0, 0.0], side: Side::Left },
                 ],
             },
             Person { stature: 1.71, steps: &[Walk(&[[7.6, 3.6], [5.0, 2.2], [3.2, 4.5], [2.6, 5.2]])] },
@@ -159,13 +161,7 @@ const ROOMS: &[Room] = &[
         people: &[
             Person { stature: 1.73, steps: &[Sit { at: [2.1, 1.25], seat: 0.46, facing: [0.0, 1.0] }] },
             Person { stature: 1.61, steps: &[Sit { at: [2.9, 1.25], seat: 0.46, facing: [0.0, 1.0] }] },
-            Person {
-                stature: 1.79,
-                steps: &[
-                    Walk(&[[1.0, 3.9], [2.0, 3.4], [2.5, 3.2]]),
-                    Sit { at: [2.5, 2.95], seat: 0.46, facing: [0.0, -1.0] },
-                ],
-            },
+            Person { stature: 1.79, steps: &[Sit { at: [2.5, 2.95], seat: 0.46, facing: [0.0, -1.0] }] },
             Person {
                 stature: 1.68,
                 steps: &[Touch { target: [3.2, 2.1, 0.76], facing: [-1.0, 0.0], side: Side::Right }],
@@ -186,16 +182,10 @@ const ROOMS: &[Room] = &[
         people: &[
             Person { stature: 1.70, steps: &[Sit { at: [1.75, 3.55], seat: 0.45, facing: [0.0, 1.0] }] },
             Person { stature: 1.77, steps: &[Sit { at: [1.75, 5.05], seat: 0.45, facing: [0.0, -1.0] }] },
-            Person {
-                stature: 1.66,
-                steps: &[
-                    Walk(&[[0.5, 1.0], [0.6, 2.8], [0.6, 4.0]]),
-                    Sit { at: [0.95, 4.3], seat: 0.45, facing: [1.0, 0.0] },
-                ],
-            },
+            Person { stature: 1.66, steps: &[Sit { at: [0.95, 4.3], seat: 0.45, facing: [1.0, 0.0] }] },
             Person {
                 stature: 1.81,
-                steps: &[Touch { target: [5.73, 1.5, 1.1], facing: [1.0, 0.0], side: Side::Right }],
+                steps: &[Touch { target: [5.45, 1.5, 1.1], facing: [1.0, 0.0], side: Side::Right }],
             },
             Person { stature: 1.72, steps: &[Walk(&[[5.6, 2.6], [2.6, 1.5], [2.8, 3.5], [2.9, 5.5]])] },
             Person {

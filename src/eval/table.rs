@@ -1,7 +1,9 @@
 //! One row of the evaluation table: the metrics of a set of generated scenes against reference
 //! category frequencies. Physics rates come from `sim` and are filled in by the caller.
 
-use super::{CklFloor, FurnitureField, LayoutCounts, category_frequencies, category_kl, contact_iou, human_penetration};
+use super::{
+    CklFloor, FurnitureField, LayoutCounts, category_frequencies, category_kl, contact_iou, human_penetration,
+};
 use crate::human::contact_boxes;
 use crate::scene::{RoomType, Scene};
 use serde::{Deserialize, Serialize};

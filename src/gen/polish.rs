@@ -300,10 +300,10 @@ fn longest_wall_direction(polygon: &crate::geom::Polygon) -> Option<f64> {
     Some((b - a).to_angle())
 }
 
-/// The yaw nearest `yaw` among `wall` plus quarter turns.
+/// The yaw nearest `yaw` among `wall` plus quarter turns, in (−π, π].
 fn square_yaw(yaw: f64, wall: f64) -> f64 {
     let quarter = std::f64::consts::FRAC_PI_2;
-    wall + ((yaw - wall) / quarter).round() * quarter
+    wrap_angle(wall + ((yaw - wall) / quarter).round() * quarter)
 }
 
 /// Narrows every standing piece that holds nobody off the walkers' feet (the free-space mask the
@@ -677,13 +677,14 @@ mod tests {
     fn every_piece_ends_square_to_the_walls() {
         let mut scene = generate_room(RoomType::Bedroom, 4, 1, false).scene;
         for (k, o) in scene.objects.iter_mut().enumerate() {
-            o.yaw += 0.05 + 0.1 * k as f64 % 0.6 - 0.3;
+            o.yaw += 0.05 + 0.1 * k as f64 % 0.6 - 0.3 + std::f64::consts::TAU * (k % 3) as f64;
         }
         let r = polish_scene(&mut scene, 30);
         assert!(r.squared >= scene.objects.len() - 1, "{r:?}");
         for o in &scene.objects {
             let off = o.yaw.rem_euclid(std::f64::consts::FRAC_PI_2);
             assert!(off.min(std::f64::consts::FRAC_PI_2 - off) < 1e-9, "{} at {}", o.id, o.yaw);
+            assert!(o.yaw > -std::f64::consts::PI && o.yaw <= std::f64::consts::PI, "{} at {}", o.id, o.yaw);
         }
     }
 
