@@ -49,6 +49,10 @@ pub struct TrainArgs {
     /// Steps between validation losses.
     #[arg(long, default_value_t = 1000)]
     pub val_every: u64,
+    /// Weigh the loss on rare categories' objects up: (median share / share)^B, at most 10×
+    /// (0: every object alike). The validation loss stays unweighted.
+    #[arg(long, default_value_t = 0.0)]
+    pub category_balance: f64,
 }
 
 struct Bar(ProgressBar);
@@ -91,6 +95,11 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     opts.lr = args.lr;
     opts.seed = args.seed;
     opts.resume = args.resume;
+    anyhow::ensure!(
+        args.category_balance.is_finite() && args.category_balance >= 0.0,
+        "--category-balance: must be a non-negative number"
+    );
+    opts.category_balance = args.category_balance;
     opts.log_every = args.log_every;
     opts.val_every = args.val_every;
     opts.checkpoint_every = Duration::from_secs_f64(args.checkpoint_minutes.max(0.0) * 60.0);

@@ -39,6 +39,47 @@ impl Example {
     }
 }
 
+/// The largest factor [`balance_categories`] gives a slot.
+pub const MAX_CATEGORY_WEIGHT: f32 = 10.0;
+
+/// Scales the loss weights of every object slot of a category rarer than the median category
+/// (among those present in `examples`) by (median share / its share)^`power`, at most
+/// [`MAX_CATEGORY_WEIGHT`]: as if rare objects were drawn that much more often. Slots of the median
+/// category or commoner ones, empty slots, and everything at `power` 0 keep their weights.
+pub fn balance_categories(examples: &mut [Example], power: f64, cfg: &ModelConfig) {
+    if power <= 0.0 {
+        return;
+    }
+    let (dim, empty) = (cfg.token_dim(), cfg.classes() - 1);
+    let mut counts = vec![0usize; empty];
+    for e in examples.iter() {
+        for t in e.tokens.chunks_exact(dim) {
+            let class = tokens::slot_class(t, cfg);
+            if class < empty {
+                counts[class] += 1;
+            }
+        }
+    }
+    let mut present: Vec<usize> = counts.iter().copied().filter(|&n| n > 0).collect();
+    if present.is_empty() {
+        return;
+    }
+    present.sort_unstable();
+    let median = present[present.len() / 2] as f64;
+    let factor: Vec<f32> = counts
+        .iter()
+        .map(|&n| if n == 0 { 1.0 } else { ((median / n as f64).powf(power) as f32).clamp(1.0, MAX_CATEGORY_WEIGHT) })
+        .collect();
+    for e in examples.iter_mut() {
+        for (t, w) in e.tokens.chunks_exact(dim).zip(e.weights.chunks_exact_mut(dim)) {
+            let class = tokens::slot_class(t, cfg);
+            if class < empty {
+                w.iter_mut().for_each(|x| *x *= factor[class]);
+            }
+        }
+    }
+}
+
 /// The scene files of a split folder, sorted by name.
 pub fn split_files(dir: &Path, split: &str) -> Result<Vec<PathBuf>, GenError> {
     let folder = dir.join(split);
@@ -116,5 +157,61 @@ impl HostBatch {
     /// A tensor of shape (B, slots, token_dim) from host values laid out like the tokens.
     pub fn token_tensor(&self, values: &[f32], cfg: &ModelConfig) -> Result<Tensor, GenError> {
         Ok(Tensor::from_slice(values, (self.size, cfg.slots(), cfg.token_dim()), &Device::Cpu)?)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::data::{SplitStats, generate_room};
+    use crate::scene::{Category, Object, RoomType};
+
+    #[test]
+    fn rare_categories_weigh_more_and_nothing_else_changes() {
+        let cfg = ModelConfig::tiny(RoomType::Bedroom);
+        let piece = |category: Category, x: f64| Object {
+            id: format!("o{x}"),
+            category,
+            center: [x, 1.0, 0.3],
+            size: [0.5, 0.5, 0.6],
+            yaw: 0.0,
+        };
+        // Beds 3, nightstands 6, a wardrobe 1: median count 3, so the wardrobe's slot weighs
+        // (3 / 1)^power, beds (3 / 3) and nightstands (3 / 6 → at least 1) stay.
+        let scenes: Vec<Scene> = (0..3)
+            .map(|i| {
+                let mut s = generate_room(RoomType::Bedroom, 3, i, false).scene;
+                s.objects = vec![
+                    piece(Category::DoubleBed, 1.0),
+                    piece(Category::Nightstand, 2.0),
+                    piece(Category::Nightstand, 2.6),
+                ];
+                if i == 0 {
+                    s.objects.push(piece(Category::Wardrobe, 3.2));
+                }
+                s
+            })
+            .collect();
+        let mut stats = SplitStats::default();
+        scenes.iter().for_each(|s| stats.add(s));
+        let bounds = Bounds::from_stats(&stats);
+        let plain: Vec<Example> = scenes.iter().map(|s| Example::of(s, &bounds, &cfg)).collect();
+        let mut weighted = plain.clone();
+        balance_categories(&mut weighted, 0.0, &cfg);
+        assert_eq!(weighted, plain);
+        balance_categories(&mut weighted, 1.0, &cfg);
+        let dim = cfg.token_dim();
+        for (scene, (w, p)) in weighted.iter().zip(&plain).enumerate() {
+            for (slot, (ws, ps)) in w.weights.chunks_exact(dim).zip(p.weights.chunks_exact(dim)).enumerate() {
+                let want = if scene == 0 && slot == 3 { 3.0 } else { 1.0 };
+                assert!(
+                    ws.iter().zip(ps).all(|(a, b)| (a - b * want).abs() < 1e-6),
+                    "scene {scene} slot {slot}: {ws:?}"
+                );
+            }
+        }
+        // The cap.
+        balance_categories(&mut weighted, 3.0, &cfg);
+        assert_eq!(weighted[0].weights[3 * dim], 3.0 * MAX_CATEGORY_WEIGHT);
     }
 }

@@ -12,7 +12,7 @@ use super::checkpoint::{
     CONFIG_FILE, CheckpointMeta, MODEL_FORMAT, STATE_FILE, STATE_META_FILE, TrainingInfo, WEIGHTS_FILE, at, fnv1a_hex,
     read_tensors, write_json, write_tensors,
 };
-use super::dataset::{Example, HostBatch, load_split};
+use super::dataset::{Example, HostBatch, balance_categories, load_split};
 use super::{Bounds, Denoiser, Dihedral, GenError, ModelConfig, Params, Schedule};
 use crate::data::{Rng, read_stats};
 use candle_core::{Tensor, Var};
@@ -55,6 +55,9 @@ pub struct TrainOptions {
     pub resume: bool,
     /// The command line, recorded in config.json.
     pub command: String,
+    /// Loss weight of rare categories' slots: (median share / share)^this (`balance_categories`);
+    /// 0, the default, weighs every slot alike.
+    pub category_balance: f64,
 }
 
 impl TrainOptions {
@@ -76,6 +79,7 @@ impl TrainOptions {
             checkpoint_every: Duration::from_secs(300),
             resume: false,
             command: String::new(),
+            category_balance: 0.0,
         }
     }
 
@@ -167,7 +171,8 @@ pub fn train(
         message: "the train split is empty".into(),
     })?;
     let bounds = Bounds::from_stats(train_split);
-    let train_set = load_split(&opts.data, "train", &bounds, cfg)?;
+    let mut train_set = load_split(&opts.data, "train", &bounds, cfg)?;
+    balance_categories(&mut train_set, opts.category_balance, cfg);
     if train_set.is_empty() {
         return Err(GenError::Input { path: opts.data.join("train"), message: "no scenes".into() });
     }
