@@ -12,7 +12,7 @@ use super::layout::{FreeGrid, Layout, Placed};
 use crate::eval::{FurnitureField, human_penetration};
 use crate::furniture::template_of;
 use crate::geom::{OBox, Polyline, facing, yaw_facing};
-use crate::human::{Body, Motion, Pose, Side, lie, sit, touch};
+use crate::human::{Body, KNEE_OVERHANG, Motion, Pose, Side, lie, sit, touch};
 use crate::scene::{Action, Category, Group, Human, Object};
 use glam::{DVec2, DVec3};
 use std::collections::VecDeque;
@@ -78,7 +78,7 @@ pub fn contact_pose(piece: &Placed, action: Action, slot: f64, rng: &mut Rng) ->
             let x = (surface.min.x + surface.max.x) * 0.5 + slot * (ext.x * 0.5 - 0.3).max(0.0);
             // Back against the backrest, unless the seat is deeper than the thighs are long: then
             // forward until the knees clear the front edge (the lower legs hang in front of it).
-            let y = (surface.min.y + 0.15).max(surface.max.y - body.thigh() + 0.07);
+            let y = (surface.min.y + 0.15).max(surface.max.y - body.thigh() + KNEE_OVERHANG);
             sit(&body, to_world(DVec2::new(x, y)), surface.height, b.yaw)
         }
         (Action::Touch, _) => {

@@ -79,8 +79,14 @@ pub fn catalog_items(category: Category) -> &'static [CatalogItem] {
 
 /// The lowest and highest of `category`'s real pieces (m); (0, ∞) for a category without any.
 pub fn height_range(category: Category) -> (f64, f64) {
-    let heights = catalog_items(category).iter().map(|i| i.size[2]);
-    let (lo, hi) = heights.fold((f64::INFINITY, 0.0_f64), |(lo, hi), h| (lo.min(h), hi.max(h)));
+    size_range(category, 2)
+}
+
+/// The smallest and largest width (`axis` 0), depth (1) or height (2) of `category`'s real pieces
+/// (m); (0, ∞) for a category without any.
+pub fn size_range(category: Category, axis: usize) -> (f64, f64) {
+    let sizes = catalog_items(category).iter().map(|i| i.size[axis]);
+    let (lo, hi) = sizes.fold((f64::INFINITY, 0.0_f64), |(lo, hi), h| (lo.min(h), hi.max(h)));
     if lo.is_finite() { (lo, hi) } else { (0.0, f64::INFINITY) }
 }
 

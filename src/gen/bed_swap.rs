@@ -5,7 +5,7 @@
 //! (after its rounds) and keeps everything else.
 
 use super::clearance::Clearance;
-use super::completion::median_size;
+use super::completion::{SeatGaps, median_size};
 use super::polish::{held_by, shift};
 use crate::eval::contact_iou;
 use crate::human::Conditions;
@@ -22,7 +22,7 @@ const SWAP_BLOCKED_AREA: f64 = 0.02;
 pub(super) fn single_beds_off_paths(
     scene: &mut Scene,
     cond: &Conditions,
-    gaps: &[f64],
+    gaps: &[SeatGaps],
     clearance: &Clearance,
     holders: &[(usize, usize)],
 ) -> usize {

@@ -22,8 +22,8 @@
 use crate::data::{Rng, contact_probability, target_frequencies};
 use crate::furniture::{catalog_items, template_of};
 use crate::geom::{OBox, facing, wrap_angle};
-use crate::human::ContactBox;
-use crate::scene::{Action, Category, Group, Object, RoomType, Scene};
+use crate::human::{ContactBox, KNEE_OVERHANG};
+use crate::scene::{Action, Category, Group, Human, Object, RoomType, Scene};
 use glam::{DVec2, DVec3};
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -49,10 +49,8 @@ pub(super) fn back_gap(scene: &Scene, contact: &ContactBox) -> f64 {
     let b = &contact.obox;
     let back = -facing(b.yaw);
     let edge = b.center.truncate().dot(back) + b.size.y * 0.5;
-    let [start, end] = contact.frames;
-    let frames = (start..end.max(start + 1)).step_by(((end - start) / 8).max(1)).filter(|&f| f < human.frames.len());
     let mut reach: f64 = 0.0;
-    for f in frames {
+    for f in span_frames(human, contact) {
         for bone in &bones {
             for j in [bone.a, bone.b] {
                 reach = reach.max(human.joint_at(f, j).truncate().dot(back) + bone.radius - edge);
@@ -60,6 +58,51 @@ pub(super) fn back_gap(scene: &Scene, contact: &ContactBox) -> f64 {
         }
     }
     reach + BACK_MARGIN
+}
+
+/// Where a sitter's support box may lie on a backed seat, back to front: at least `back` (m) in
+/// front of the backrest ([`back_gap`]) and near enough the front edge for the knees to pass it
+/// ([`SeatGaps::front`]). Not a sitter's box: no limits.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct SeatGaps {
+    pub back: f64,
+    /// The sitter's knees (world xy) over the span; none for anyone else.
+    pub knees: Vec<DVec2>,
+}
+
+impl SeatGaps {
+    pub fn of(scene: &Scene, contact: &ContactBox) -> SeatGaps {
+        SeatGaps { back: back_gap(scene, contact), knees: knees(scene, contact) }
+    }
+
+    /// How far behind the front edge (local +y) of `o` the front of `contact`'s box may be (m):
+    /// as far as the knees reach past it along `o`'s depth (the knee and frame that reach least),
+    /// less [`KNEE_OVERHANG`], so that the lower legs hang clear of a deep seat as in the data.
+    /// Unlimited for anyone but a sitter.
+    pub fn front(&self, contact: &ContactBox, o: &Object) -> f64 {
+        let b = o.obox();
+        let (_, ay) = b.axes();
+        let front = contact.obox.footprint().iter().map(|p| p.dot(ay)).fold(f64::NEG_INFINITY, f64::max);
+        let reach = self.knees.iter().map(|k| k.dot(ay) - front).fold(f64::INFINITY, f64::min);
+        (reach - KNEE_OVERHANG).max(0.0)
+    }
+}
+
+/// A sitter's knees (world xy) over the span of `contact`; none for anyone else or a person
+/// without knees.
+fn knees(scene: &Scene, contact: &ContactBox) -> Vec<DVec2> {
+    let Some(human) = scene.humans.iter().find(|h| h.id == contact.human) else { return Vec::new() };
+    if contact.action != Action::Sit {
+        return Vec::new();
+    }
+    let joints: Vec<usize> = ["left_knee", "right_knee"].iter().filter_map(|n| human.skeleton.joint(n)).collect();
+    span_frames(human, contact).flat_map(|f| joints.iter().map(move |&k| human.joint_at(f, k).truncate())).collect()
+}
+
+/// Up to about nine frames spread over `contact`'s span.
+fn span_frames<'a>(human: &'a Human, contact: &ContactBox) -> impl Iterator<Item = usize> + 'a {
+    let [start, end] = contact.frames;
+    (start..end.max(start + 1)).step_by(((end - start) / 8).max(1)).filter(|&f| f < human.frames.len())
 }
 /// Margin around a box in the width of a new piece (m).
 const SIDE_MARGIN: f64 = 0.04;

@@ -13,6 +13,7 @@ mod clearance;
 mod completion;
 mod config;
 mod dataset;
+mod deep_seats;
 mod error;
 mod features;
 mod generate;

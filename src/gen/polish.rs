@@ -16,8 +16,8 @@
 //! volume (within the heights of the category's real pieces, give or take 15 cm), other holders
 //! grow to the top of their box (at most 15 cm), and width and depth grow by at most 20 cm where
 //! the box needs it. Every round then (1) moves each holder by the smallest shift that puts its boxes'
-//! footprints on the part they must be on (a seat's surface clear of its backrest, a mattress, else
-//! the footprint) and pushes pieces out of people's way (where footprint and height meet a walking
+//! footprints on the part they must be on (a seat's surface clear of its backrest and near enough
+//! its front edge for the knees to pass it by 7 cm, as in the data; a mattress; else the footprint) and pushes pieces out of people's way (where footprint and height meet a walking
 //! or standing body, or a sitter's or toucher's shins and feet for a piece solid to the floor,
 //! `Clearance`; a holder only as far as its people stay on it), (2) separates overlapping pairs along the shortest
 //! separating axis that keeps both inside the walls, and (3) moves every footprint inside the floor
@@ -25,18 +25,23 @@
 //! overlaps and paths; the last third of the rounds leaves contacts alone and the last five paths,
 //! so the layout ends separated and inside. Rounds stop when nothing moves a millimetre. A box
 //! still less than half covered after that gets a new piece and a second pass of rounds. A double
-//! bed still in people's way becomes a single bed where that clears some of the way. A piece still
+//! bed still in people's way becomes a single bed where that clears some of the way; a chair or
+//! sofa too deep for its sitters' knees to pass its front edge (one against a wall) loses depth at
+//! the front, an L-shaped sofa or chaise too deep for any real one becoming a multi-seat sofa
+//! (`deep_seats`). A piece still
 //! poking out of the floor plan is then moved back over its people and inside or narrowed by at
 //! most 10 cm, a piece holding nobody is narrowed off the walkers' feet where 10 cm do it, and
 //! overlaps that survive are narrowed away or lose their smaller piece (`overlaps`; never a piece
 //! that holds a person).
 //!
 //! It re-categorises nothing but a double bed in people's way, which may become a single bed, and
-//! adds only within the room type's object limit.
+//! a sofa too deep for its sitters, which may become a multi-seat sofa, and adds only within the
+//! room type's object limit.
 
 use super::bed_swap::single_beds_off_paths;
 use super::clearance::Clearance;
-use super::completion::{back_gap, height_for_surface, support_for};
+use super::completion::{SeatGaps, height_for_surface, support_for};
+use super::deep_seats::trim_deep_seats;
 use super::inside::{CLEARANCE, fits_inside, inside_push, worst_offence};
 use super::overlaps::{narrow_by, resolve_overlaps};
 use super::walls::{stands_against_wall, to_nearest_wall, to_wall_behind};
@@ -75,6 +80,8 @@ pub struct PolishReport {
     pub walled: usize,
     /// Double beds in people's way swapped for a single bed.
     pub swapped: usize,
+    /// Deep seats trimmed at the front until their sitters' knees pass it (`deep_seats`).
+    pub trimmed: usize,
     /// Objects narrowed to fit the floor plan, off the walkers' feet or out of an overlap (`overlaps`).
     pub narrowed: usize,
     /// Objects removed from an overlap nothing else undid (`overlaps`).
@@ -93,7 +100,7 @@ const COVERED: f64 = 0.5;
 pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
     let cond = Conditions::of(scene);
     let clearance = Clearance::of(scene, &cond.window);
-    let gaps: Vec<f64> = cond.contact_boxes.iter().map(|c| back_gap(scene, c)).collect();
+    let gaps: Vec<SeatGaps> = cond.contact_boxes.iter().map(|c| SeatGaps::of(scene, c)).collect();
     let mut report = PolishReport::default();
     let start: Vec<DVec2> = scene.objects.iter().map(|o| DVec2::new(o.center[0], o.center[1])).collect();
     let mut holders = Vec::new();
@@ -119,6 +126,7 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
         .map(|(o, s)| DVec2::new(o.center[0], o.center[1]).distance(*s))
         .fold(0.0, f64::max);
     report.swapped = single_beds_off_paths(scene, &cond, &gaps, &clearance, &holders);
+    report.trimmed = trim_deep_seats(scene, &cond, &gaps, &holders);
     report.narrowed += fit_into_room(scene, &cond, &gaps, &holders);
     let holds: Vec<bool> = (0..scene.objects.len()).map(|i| holders.iter().any(|(_, h)| *h == i)).collect();
     report.narrowed += narrow_off_paths(scene, &cond, &holds);
@@ -132,7 +140,7 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
 fn polish_rounds(
     scene: &mut Scene,
     cond: &Conditions,
-    gaps: &[f64],
+    gaps: &[SeatGaps],
     clearance: &Clearance,
     holders: &[(usize, usize)],
     rounds: usize,
@@ -155,7 +163,7 @@ fn polish_rounds(
             scene.objects[*i].yaw = yaw;
             turned[*i] = true;
         }
-        report.resized += fit_size(&mut scene.objects[*i], contact, gaps[*b]) as usize;
+        report.resized += fit_size(&mut scene.objects[*i], contact, &gaps[*b]) as usize;
     }
     report.turned += turned.iter().zip(&kept).filter(|(t, k)| **t && !**k).count();
     // The data's pieces all stand square to the walls; so do ours (seats the quarter turn nearest
@@ -177,7 +185,7 @@ fn polish_rounds(
         let mut counts = vec![0usize; scene.objects.len()];
         if round * 3 < rounds * 2 {
             for (b, i) in holders {
-                moves[*i] += containment_shift(&cond.contact_boxes[*b], gaps[*b], &scene.objects[*i]);
+                moves[*i] += containment_shift(&cond.contact_boxes[*b], &gaps[*b], &scene.objects[*i]);
                 counts[*i] += 1;
             }
         }
@@ -229,7 +237,7 @@ fn polish_rounds(
 /// Moves every piece the rounds left poking out of the floor plan back over the contact boxes it
 /// holds and inside; where it still does not fit, narrows it by what sticks out (at most 10 cm and
 /// a quarter of its size) if that makes it fit. Returns how many pieces were narrowed.
-fn fit_into_room(scene: &mut Scene, cond: &Conditions, gaps: &[f64], holders: &[(usize, usize)]) -> usize {
+fn fit_into_room(scene: &mut Scene, cond: &Conditions, gaps: &[SeatGaps], holders: &[(usize, usize)]) -> usize {
     let polygon = scene.floor_plan.polygon();
     let mut narrowed = 0;
     for i in 0..scene.objects.len() {
@@ -240,7 +248,7 @@ fn fit_into_room(scene: &mut Scene, cond: &Conditions, gaps: &[f64], holders: &[
         let o = &mut scene.objects[i];
         let held = held_by(holders, cond, gaps, i);
         if !held.is_empty() {
-            let m = held.iter().map(|(b, gap)| containment_shift(b, *gap, o)).sum::<DVec2>() / held.len() as f64;
+            let m = held.iter().map(|(b, gap)| containment_shift(b, gap, o)).sum::<DVec2>() / held.len() as f64;
             shift(o, m);
         }
         let w = inside_push(&o.obox(), &polygon);
@@ -269,7 +277,7 @@ fn fit_into_room(scene: &mut Scene, cond: &Conditions, gaps: &[f64], holders: &[
 /// Puts every piece the data stands against a wall back against one (`walls`): a piece holding
 /// nobody turned to the nearest wall, a holder towards the wall behind it as far as its people stay
 /// on it. Returns how many pieces moved or turned.
-fn back_to_walls(scene: &mut Scene, cond: &Conditions, gaps: &[f64], holders: &[(usize, usize)]) -> usize {
+fn back_to_walls(scene: &mut Scene, cond: &Conditions, gaps: &[SeatGaps], holders: &[(usize, usize)]) -> usize {
     let polygon = scene.floor_plan.polygon();
     let mut walled = 0;
     for i in 0..scene.objects.len() {
@@ -344,14 +352,14 @@ fn narrow_off_paths(scene: &mut Scene, cond: &Conditions, holds: &[bool]) -> usi
     narrowed
 }
 
-/// The contact boxes object `i` holds, each with its back gap.
+/// The contact boxes object `i` holds, each with its seat gaps.
 pub(super) fn held_by<'a>(
     holders: &[(usize, usize)],
     cond: &'a Conditions,
-    gaps: &[f64],
+    gaps: &'a [SeatGaps],
     i: usize,
-) -> Vec<(&'a ContactBox, f64)> {
-    holders.iter().filter(|(_, h)| *h == i).map(|(b, _)| (&cond.contact_boxes[*b], gaps[*b])).collect()
+) -> Vec<(&'a ContactBox, &'a SeatGaps)> {
+    holders.iter().filter(|(_, h)| *h == i).map(|(b, _)| (&cond.contact_boxes[*b], &gaps[*b])).collect()
 }
 
 pub(super) fn shift(o: &mut Object, m: DVec2) {
@@ -468,7 +476,7 @@ fn bed_local_facing(o: &Object, contact: &ContactBox) -> DVec2 {
 /// depth grow until the box fits the part it must be on ([`holding_region`]). A surface's height
 /// stays within the category's real pieces' (± 15 cm), any other height changes by at most 15 cm,
 /// width and depth by at most 20 cm. Returns whether it changed.
-fn fit_size(o: &mut Object, contact: &ContactBox, back: f64) -> bool {
+fn fit_size(o: &mut Object, contact: &ContactBox, gaps: &SeatGaps) -> bool {
     if o.category.is_hanging() {
         return false;
     }
@@ -488,7 +496,7 @@ fn fit_size(o: &mut Object, contact: &ContactBox, back: f64) -> bool {
         o.center[2] = height * 0.5;
     }
     let (lo, hi) = local_extent(&contact.obox, &o.obox());
-    let (region_lo, region_hi) = holding_region(o, contact, back);
+    let (region_lo, region_hi) = holding_region(o, contact, gaps);
     for k in 0..2 {
         let need = (hi[k] - lo[k]) + (o.size[k] - (region_hi[k] - region_lo[k]));
         if need > o.size[k] && need - o.size[k] <= MAX_GROW_EXTENT {
@@ -499,9 +507,10 @@ fn fit_size(o: &mut Object, contact: &ContactBox, back: f64) -> bool {
 }
 
 /// The part of `o`'s footprint (local min, max corners) the person of `contact` must be on: a
-/// seat's or bed's surface for sitting and lying (on a chair or sofa, `back` clear of the backrest,
-/// [`back_gap`]), the whole footprint otherwise.
-fn holding_region(o: &Object, contact: &ContactBox, back: f64) -> (DVec2, DVec2) {
+/// seat's or bed's surface for sitting and lying (on a chair or sofa, clear of the backrest and
+/// near enough the front edge for the knees to pass it, [`SeatGaps`]), the whole footprint
+/// otherwise.
+fn holding_region(o: &Object, contact: &ContactBox, gaps: &SeatGaps) -> (DVec2, DVec2) {
     let half = DVec2::new(o.size[0], o.size[1]) * 0.5;
     let action = contact.action;
     let Some(surface) = template(o).surface.filter(|_| matches!(action, Action::Sit | Action::Lie)) else {
@@ -511,7 +520,14 @@ fn holding_region(o: &Object, contact: &ContactBox, back: f64) -> (DVec2, DVec2)
         return bed_edge_region(o, contact, (surface.min, surface.max));
     }
     let backed = action == Action::Sit && matches!(o.category.group(), Group::Chair | Group::Sofa);
-    (surface.min + DVec2::new(0.0, if backed { back } else { 0.0 }), surface.max)
+    if !backed {
+        return (surface.min, surface.max);
+    }
+    // The box's front at most `gaps.front` behind the seat's front edge (local +y), unless that
+    // leaves no room behind: a seat too shallow for it.
+    let (lo, hi) = local_extent(&contact.obox, &o.obox());
+    let start = (surface.min.y + gaps.back).max(surface.max.y - gaps.front(contact, o) - (hi.y - lo.y));
+    (DVec2::new(surface.min.x, start), surface.max)
 }
 
 /// How far a bed sitter's support box may overhang the edge they sit on (m): the box reaches a
@@ -538,7 +554,7 @@ fn bed_edge_region(o: &Object, contact: &ContactBox, (mut lo, mut hi): (DVec2, D
 }
 
 /// The contact box's footprint corners in `o`'s frame: (min, max) per axis.
-fn local_extent(contact: &OBox, o: &OBox) -> (DVec2, DVec2) {
+pub(super) fn local_extent(contact: &OBox, o: &OBox) -> (DVec2, DVec2) {
     let corners = contact.footprint().map(|p| o.to_local(p.extend(o.center.z)).truncate());
     let lo = corners.iter().fold(DVec2::splat(f64::INFINITY), |a, p| a.min(*p));
     let hi = corners.iter().fold(DVec2::splat(f64::NEG_INFINITY), |a, p| a.max(*p));
@@ -547,10 +563,10 @@ fn local_extent(contact: &OBox, o: &OBox) -> (DVec2, DVec2) {
 
 /// The smallest move of `o` (world, m) that puts `contact`'s footprint inside the part of `o` it
 /// must be on ([`holding_region`]), or centres it there where it cannot fit.
-fn containment_shift(contact: &ContactBox, back: f64, o: &Object) -> DVec2 {
+fn containment_shift(contact: &ContactBox, gaps: &SeatGaps, o: &Object) -> DVec2 {
     let b = o.obox();
     let (lo, hi) = local_extent(&contact.obox, &b);
-    let (region_lo, region_hi) = holding_region(o, contact, back);
+    let (region_lo, region_hi) = holding_region(o, contact, gaps);
     let mut s = DVec2::ZERO;
     for k in 0..2 {
         // Any shift in [hi − region_hi, lo − region_lo] contains the box; an empty range: centre it.
@@ -563,16 +579,16 @@ fn containment_shift(contact: &ContactBox, back: f64, o: &Object) -> DVec2 {
 
 /// `m` (world) limited, along each of `o`'s axes, to the moves that keep every `held` box on the
 /// part of `o` it must be on ([`holding_region`]); `m` itself when `o` holds nothing.
-fn within_slack(o: &Object, held: &[(&ContactBox, f64)], m: DVec2) -> DVec2 {
+fn within_slack(o: &Object, held: &[(&ContactBox, &SeatGaps)], m: DVec2) -> DVec2 {
     if held.is_empty() {
         return m;
     }
     let b = o.obox();
     let (ax, ay) = b.axes();
     let mut local = DVec2::new(m.dot(ax), m.dot(ay));
-    for (contact, back) in held {
+    for (contact, gaps) in held {
         let (lo, hi) = local_extent(&contact.obox, &b);
-        let (region_lo, region_hi) = holding_region(o, contact, *back);
+        let (region_lo, region_hi) = holding_region(o, contact, gaps);
         for k in 0..2 {
             // Moving o by s moves the box by −s in o's frame: s ∈ [hi − region_hi, lo − region_lo].
             let (from, to) = ((hi[k] - region_hi[k]).min(0.0), (lo[k] - region_lo[k]).max(0.0));
@@ -877,6 +893,38 @@ mod tests {
         assert!((now - right).abs() < 0.01, "room {index}: surface at {now}, the sleeper's support at {right}");
     }
 
+    fn back_only(back: f64) -> SeatGaps {
+        SeatGaps { back, knees: Vec::new() }
+    }
+
+    #[test]
+    fn a_sitter_on_a_deep_sofa_ends_with_the_knees_past_its_front_edge() {
+        // A 1.1 m deep sofa facing +y, a sitter's box 14 cm deep whose front is at y = 0.1, the
+        // knees 0.25 m further: the seat's front edge may be at most 0.25 − KNEE_OVERHANG past the
+        // box, so the sofa moves back until its surface ends at y = 0.28.
+        let sofa = Object {
+            id: "o0".into(),
+            category: crate::scene::Category::MultiSeatSofa,
+            center: [0.0, 0.0, 0.42],
+            size: [2.0, 1.1, 0.84],
+            yaw: 0.0,
+        };
+        let contact = ContactBox {
+            human: "h0".into(),
+            action: Action::Sit,
+            frames: [0, 1],
+            obox: OBox::new(DVec3::new(0.0, 0.03, 0.45), DVec3::new(0.3, 0.14, 0.1), 0.0),
+        };
+        let gaps = SeatGaps { back: 0.05, knees: vec![DVec2::new(-0.1, 0.35), DVec2::new(0.1, 0.36)] };
+        assert!((gaps.front(&contact, &sofa) - (0.25 - crate::human::KNEE_OVERHANG)).abs() < 1e-12);
+        let mut moved = sofa.clone();
+        shift(&mut moved, containment_shift(&contact, &gaps, &sofa));
+        let front = template(&moved).surface.unwrap().max.y + moved.center[1];
+        assert!((front - (0.35 - crate::human::KNEE_OVERHANG)).abs() < 1e-9, "{front}");
+        // Without knees (or with a shallow seat's) the box may sit anywhere clear of the backrest.
+        assert_eq!(containment_shift(&contact, &back_only(0.05), &sofa), DVec2::ZERO);
+    }
+
     #[test]
     fn containment_moves_a_seat_under_its_sitter_by_the_smallest_shift() {
         let chair = Object {
@@ -894,13 +942,13 @@ mod tests {
         };
         // A stool's seat is its whole top: the box reaches x = 0.4, the stool 0.25, so it must move
         // 0.15 along world x.
-        let s = containment_shift(&sit(DVec3::new(0.3, 0.0, 0.45), 0.0), 0.08, &chair);
+        let s = containment_shift(&sit(DVec3::new(0.3, 0.0, 0.45), 0.0), &back_only(0.08), &chair);
         assert!((s - DVec2::new(0.15, 0.0)).length() < 1e-12, "{s}");
         // A dining chair facing +y (yaw 0) 0.5 deep has a 6 cm back at −y; its seat starts at
         // y = −0.19, and the box must start a back gap of 8 cm further, at −0.11: a box from y = −0.2
         // moves the chair by −0.09 in y.
         let chair = Object { category: crate::scene::Category::DiningChair, yaw: 0.0, ..chair };
-        let s = containment_shift(&sit(DVec3::new(0.0, -0.1, 0.45), 0.0), 0.08, &chair);
+        let s = containment_shift(&sit(DVec3::new(0.0, -0.1, 0.45), 0.0), &back_only(0.08), &chair);
         assert!((s - DVec2::new(0.0, -0.09)).length() < 1e-12, "{s}");
     }
 }

@@ -17,6 +17,6 @@ pub use conditions::{
 };
 pub use gait::Gait;
 pub use motion::Motion;
-pub use pose::{BODY_BONES, Pose, SEAT_BONES, lie, sit, stand, stand_local, touch, two_bone_ik};
+pub use pose::{BODY_BONES, KNEE_OVERHANG, Pose, SEAT_BONES, lie, sit, stand, stand_local, touch, two_bone_ik};
 pub use skeleton::{Body, JOINT_NAMES, Joint, Side, round_mm};
 pub use surface::{SurfaceSampler, segment_distance_3d};

@@ -129,6 +129,10 @@ pub const SEAT_BONES: [(Joint, Joint); 5] = [
     (Joint::RightHip, Joint::RightKnee),
 ];
 
+/// How far a sitter's knees reach past the front edge of a seat deeper than their thighs are long
+/// (m): the lower legs hang clear of it. The data seats people so; polishing keeps it.
+pub const KNEE_OVERHANG: f64 = 0.07;
+
 /// Sitting on a seat whose top is `seat_height` above the floor: the pelvis above `at` (world xy),
 /// facing `yaw`, thighs horizontal, lower legs down, feet on the floor where they reach it (they
 /// hang on a high seat; the knees rise on a low one), hands resting on the thighs.
