@@ -41,6 +41,10 @@ pub struct TrainingInfo {
     pub ema_decay: f64,
     /// Seed of initialisation, batches and noise.
     pub seed: u64,
+    /// `--category-balance`: rare categories' loss weight exponent (0 when absent: files written
+    /// before it existed were trained without).
+    #[serde(default)]
+    pub category_balance: f64,
     /// Training wall time so far (s).
     pub wall_seconds: f64,
     /// Last validation loss of the EMA weights.

@@ -209,6 +209,7 @@ pub fn train(
         lr: opts.lr,
         ema_decay: opts.ema_decay,
         seed: opts.seed,
+        category_balance: opts.category_balance,
         wall_seconds: seconds,
         val_loss,
     };
@@ -386,6 +387,15 @@ fn restore(
     let meta = super::checkpoint::parse_meta(&config_text, &config_path)?;
     if meta.model != opts.model {
         return Err(GenError::checkpoint(&config_path, "model config differs from the one asked for"));
+    }
+    if meta.training.category_balance != opts.category_balance {
+        return Err(GenError::checkpoint(
+            &config_path,
+            format!(
+                "was trained with --category-balance {}, not {}: resume with the same",
+                meta.training.category_balance, opts.category_balance
+            ),
+        ));
     }
     let path = opts.out.join(STATE_FILE);
     let bytes = std::fs::read(&path).map_err(|e| GenError::io(&path, e))?;

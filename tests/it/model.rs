@@ -73,6 +73,12 @@ fn a_stopped_and_resumed_run_ends_with_the_same_weights_as_an_uninterrupted_one(
     wrong.resume = true;
     let err = train(&wrong, &AtomicBool::new(false), &mut ()).unwrap_err().to_string();
     assert!(err.contains("train_state.json") && err.contains("different dataset"), "{err}");
+
+    // So is resuming with another category balance than the run had (recorded in config.json).
+    let mut rebalanced = options(&data, &split);
+    (rebalanced.resume, rebalanced.category_balance) = (true, 0.5);
+    let err = train(&rebalanced, &AtomicBool::new(false), &mut ()).unwrap_err().to_string();
+    assert!(err.contains("config.json") && err.contains("--category-balance 0, not 0.5"), "{err}");
 }
 
 fn train_cli(data: &Path, out: &Path) -> std::process::Output {
