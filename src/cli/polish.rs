@@ -75,11 +75,12 @@ pub fn run(args: &PolishArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus>
         let largest = reports.iter().map(|r| r.max_move).fold(0.0, f64::max);
         print_text(&format!(
             "{} scenes polished into {}: {moved} changed, largest move {largest:.3} m; objects: {} resized, {} added, \
-             {} narrowed, {} removed\n",
+             {} trimmed, {} narrowed, {} removed\n",
             reports.len(),
             args.out.display(),
             reports.iter().map(|r| r.resized).sum::<usize>(),
             reports.iter().map(|r| r.added).sum::<usize>(),
+            reports.iter().map(|r| r.trimmed).sum::<usize>(),
             reports.iter().map(|r| r.narrowed).sum::<usize>(),
             reports.iter().map(|r| r.removed).sum::<usize>()
         ))?;
