@@ -65,6 +65,7 @@ pub(super) fn back_gap(scene: &Scene, contact: &ContactBox) -> f64 {
 /// ([`SeatGaps::front`]). Not a sitter's box: no limits.
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct SeatGaps {
+    /// Clearance from the backrest (m).
     pub back: f64,
     /// The sitter's knees (world xy) over the span; none for anyone else.
     pub knees: Vec<DVec2>,
@@ -104,6 +105,7 @@ fn span_frames<'a>(human: &'a Human, contact: &ContactBox) -> impl Iterator<Item
     let [start, end] = contact.frames;
     (start..end.max(start + 1)).step_by(((end - start) / 8).max(1)).filter(|&f| f < human.frames.len())
 }
+
 /// Margin around a box in the width of a new piece (m).
 const SIDE_MARGIN: f64 = 0.04;
 /// Highest palm that touches a top rather than a front face (m).

@@ -15,9 +15,10 @@
 //! its people allow). A seat's or bed's surface goes to the top of its person's support
 //! volume (within the heights of the category's real pieces, give or take 15 cm), other holders
 //! grow to the top of their box (at most 15 cm), and width and depth grow by at most 20 cm where
-//! the box needs it. Every round then (1) moves each holder by the smallest shift that puts its boxes'
-//! footprints on the part they must be on (a seat's surface clear of its backrest and near enough
-//! its front edge for the knees to pass it by 7 cm, as in the data; a mattress; else the footprint) and pushes pieces out of people's way (where footprint and height meet a walking
+//! the box needs it. Every round then (1) moves each holder by the smallest shift that puts its
+//! boxes' footprints on the part they must be on (a seat's surface clear of its backrest and near
+//! enough its front edge for the knees to pass it by 7 cm, as in the data; a mattress; else the
+//! footprint) and pushes pieces out of people's way (where footprint and height meet a walking
 //! or standing body, or a sitter's or toucher's shins and feet for a piece solid to the floor,
 //! `Clearance`; a holder only as far as its people stay on it), (2) separates overlapping pairs along the shortest
 //! separating axis that keeps both inside the walls, and (3) moves every footprint inside the floor
@@ -25,7 +26,8 @@
 //! overlaps and paths; the last third of the rounds leaves contacts alone and the last five paths,
 //! so the layout ends separated and inside. Rounds stop when nothing moves a millimetre. A box
 //! still less than half covered after that gets a new piece and a second pass of rounds. A double
-//! bed still in people's way becomes a single bed where that clears some of the way; a chair or
+//! bed still in people's way becomes the narrowest real double bed where that clears all of the
+//! way, else a single bed where that clears some of it (`bed_swap`); a chair or
 //! sofa too deep for its sitters' knees to pass its front edge (one against a wall) loses depth at
 //! the front, an L-shaped sofa or chaise too deep for any real one becoming a multi-seat sofa
 //! (`deep_seats`). A piece still
