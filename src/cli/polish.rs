@@ -8,7 +8,7 @@ use anyhow::Context;
 use clap::Args;
 use rayon::prelude::*;
 use serde::Serialize;
-use shade_sim::generator::polish_scene;
+use shade_sim::generator::{PolishReport, polish_scene};
 use shade_sim::scene::Scene;
 use std::path::PathBuf;
 
@@ -27,17 +27,8 @@ pub struct PolishArgs {
 #[derive(Serialize)]
 struct FileReport {
     file: String,
-    rounds: usize,
-    resized: usize,
-    turned: usize,
-    added: usize,
-    squared: usize,
-    walled: usize,
-    swapped: usize,
-    trimmed: usize,
-    narrowed: usize,
-    removed: usize,
-    max_move: f64,
+    #[serde(flatten)]
+    report: PolishReport,
 }
 
 pub fn run(args: &PolishArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
@@ -52,37 +43,24 @@ pub fn run(args: &PolishArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus>
             let r = polish_scene(&mut scene, args.rounds);
             let out = args.out.join(file.file_name().context("a scene file has a name")?);
             scene.save(&out)?;
-            Ok(FileReport {
-                file: out.display().to_string(),
-                rounds: r.rounds,
-                resized: r.resized,
-                turned: r.turned,
-                added: r.added,
-                squared: r.squared,
-                walled: r.walled,
-                swapped: r.swapped,
-                trimmed: r.trimmed,
-                narrowed: r.narrowed,
-                removed: r.removed,
-                max_move: r.max_move,
-            })
+            Ok(FileReport { file: out.display().to_string(), report: r })
         })
         .collect::<anyhow::Result<_>>()?;
     if global.json {
         print_json(&reports)?;
     } else if global.quiet == 0 {
-        let moved = reports.iter().filter(|r| r.max_move > 1e-3).count();
-        let largest = reports.iter().map(|r| r.max_move).fold(0.0, f64::max);
+        let moved = reports.iter().filter(|r| r.report.max_move > 1e-3).count();
+        let largest = reports.iter().map(|r| r.report.max_move).fold(0.0, f64::max);
         print_text(&format!(
             "{} scenes polished into {}: {moved} changed, largest move {largest:.3} m; objects: {} resized, {} added, \
              {} trimmed, {} narrowed, {} removed\n",
             reports.len(),
             args.out.display(),
-            reports.iter().map(|r| r.resized).sum::<usize>(),
-            reports.iter().map(|r| r.added).sum::<usize>(),
-            reports.iter().map(|r| r.trimmed).sum::<usize>(),
-            reports.iter().map(|r| r.narrowed).sum::<usize>(),
-            reports.iter().map(|r| r.removed).sum::<usize>()
+            reports.iter().map(|r| r.report.resized).sum::<usize>(),
+            reports.iter().map(|r| r.report.added).sum::<usize>(),
+            reports.iter().map(|r| r.report.trimmed).sum::<usize>(),
+            reports.iter().map(|r| r.report.narrowed).sum::<usize>(),
+            reports.iter().map(|r| r.report.removed).sum::<usize>()
         ))?;
     }
     Ok(ExitStatus::Success)

@@ -51,14 +51,11 @@ pub fn balance_categories(examples: &mut [Example], power: f64, cfg: &ModelConfi
         return;
     }
     let (dim, empty) = (cfg.token_dim(), cfg.classes() - 1);
+    let classes: Vec<Vec<usize>> =
+        examples.iter().map(|e| e.tokens.chunks_exact(dim).map(|t| tokens::slot_class(t, cfg)).collect()).collect();
     let mut counts = vec![0usize; empty];
-    for e in examples.iter() {
-        for t in e.tokens.chunks_exact(dim) {
-            let class = tokens::slot_class(t, cfg);
-            if class < empty {
-                counts[class] += 1;
-            }
-        }
+    for &class in classes.iter().flatten().filter(|&&c| c < empty) {
+        counts[class] += 1;
     }
     let mut present: Vec<usize> = counts.iter().copied().filter(|&n| n > 0).collect();
     if present.is_empty() {
@@ -70,9 +67,8 @@ pub fn balance_categories(examples: &mut [Example], power: f64, cfg: &ModelConfi
         .iter()
         .map(|&n| if n == 0 { 1.0 } else { ((median / n as f64).powf(power) as f32).clamp(1.0, MAX_CATEGORY_WEIGHT) })
         .collect();
-    for e in examples.iter_mut() {
-        for (t, w) in e.tokens.chunks_exact(dim).zip(e.weights.chunks_exact_mut(dim)) {
-            let class = tokens::slot_class(t, cfg);
+    for (e, classes) in examples.iter_mut().zip(&classes) {
+        for (w, &class) in e.weights.chunks_exact_mut(dim).zip(classes) {
             if class < empty {
                 w.iter_mut().for_each(|x| *x *= factor[class]);
             }

@@ -53,6 +53,7 @@ use crate::geom::{OBox, facing, intersection_volume, iou_3d, wrap_angle};
 use crate::human::{Conditions, ContactBox};
 use crate::scene::{Action, Group, Object, Scene};
 use glam::DVec2;
+use serde::Serialize;
 
 /// How far an object's height may grow to cover a contact box (m).
 const MAX_GROW_HEIGHT: f64 = 0.15;
@@ -66,7 +67,7 @@ const MAX_STEP: f64 = 0.3;
 const ANCHORED_MOBILITY: f64 = 0.2;
 
 /// What polishing changed.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
 pub struct PolishReport {
     /// Rounds run.
     pub rounds: usize,
