@@ -46,7 +46,7 @@ use super::completion::{SeatGaps, height_for_surface, support_for};
 use super::deep_seats::trim_deep_seats;
 use super::inside::{CLEARANCE, fits_inside, inside_push, worst_offence};
 use super::overlaps::{narrow_by, resolve_overlaps};
-use super::walls::{stands_against_wall, to_nearest_wall, to_wall_behind};
+use super::walls::{stands_against_wall, to_wall_behind, wall_poses};
 use crate::eval::contact_iou;
 use crate::furniture::{PartRole, height_range, template};
 use crate::geom::{OBox, facing, intersection_volume, iou_3d, wrap_angle};
@@ -177,7 +177,7 @@ fn polish_rounds(
             report.squared += (wrap_angle(o.yaw - start).abs() > 1e-3) as usize;
         }
     }
-    report.walled += back_to_walls(scene, cond, gaps, holders);
+    report.walled += back_to_walls(scene, cond, gaps, clearance, holders);
     let mobility: Vec<f64> = (0..scene.objects.len())
         .map(|i| if holders.iter().any(|(_, h)| *h == i) { ANCHORED_MOBILITY } else { 1.0 })
         .collect();
@@ -278,9 +278,16 @@ fn fit_into_room(scene: &mut Scene, cond: &Conditions, gaps: &[SeatGaps], holder
 }
 
 /// Puts every piece the data stands against a wall back against one (`walls`): a piece holding
-/// nobody turned to the nearest wall, a holder towards the wall behind it as far as its people stay
-/// on it. Returns how many pieces moved or turned.
-fn back_to_walls(scene: &mut Scene, cond: &Conditions, gaps: &[SeatGaps], holders: &[(usize, usize)]) -> usize {
+/// nobody against the wall behind or in front of it (turned half round), whichever puts it less in
+/// people's way, else the nearer; a holder towards the wall behind it as far as its people stay on
+/// it. Returns how many pieces moved or turned.
+fn back_to_walls(
+    scene: &mut Scene,
+    cond: &Conditions,
+    gaps: &[SeatGaps],
+    clearance: &Clearance,
+    holders: &[(usize, usize)],
+) -> usize {
     let polygon = scene.floor_plan.polygon();
     let mut walled = 0;
     for i in 0..scene.objects.len() {
@@ -290,7 +297,12 @@ fn back_to_walls(scene: &mut Scene, cond: &Conditions, gaps: &[SeatGaps], holder
         let held = held_by(holders, cond, gaps, i);
         let o = &mut scene.objects[i];
         let (yaw, m) = if held.is_empty() {
-            let Some(pose) = to_nearest_wall(&o.obox(), &polygon) else { continue };
+            let in_the_way = |&(yaw, m): &(f64, DVec2)| {
+                let b = o.obox();
+                clearance.blocked(&OBox::new(b.center + m.extend(0.0), b.size, yaw), true).len()
+            };
+            // `min_by_key` keeps the first of equals: the nearer wall.
+            let Some(pose) = wall_poses(&o.obox(), &polygon).into_iter().min_by_key(in_the_way) else { continue };
             pose
         } else {
             let Some(m) = to_wall_behind(&o.obox(), &polygon) else { continue };
@@ -770,6 +782,36 @@ mod tests {
         let w = scene.objects[0].size[0];
         assert!(w < 2.2 - 2.0 * CLEARANCE + 1e-9 && w > 2.15, "{w}");
         assert!(fits_inside(&scene.objects[0].obox(), &scene.floor_plan.polygon()));
+    }
+
+    #[test]
+    fn a_wardrobe_whose_nearest_wall_is_a_walkway_goes_to_the_wall_behind_it() {
+        use crate::human::{Body, Motion};
+        let mut scene = generate_room(RoomType::Bedroom, 3, 0, false).scene;
+        scene.floor_plan.polygon = vec![[0.0, 0.0], [4.0, 0.0], [4.0, 3.5], [0.0, 3.5]];
+        let wardrobe = |center: [f64; 3], yaw: f64| Object {
+            id: "o0".into(),
+            category: crate::scene::Category::Wardrobe,
+            center,
+            size: [1.6, 0.6, 2.0],
+            yaw,
+        };
+        // Facing −y, its front 1.2 m from the south wall and its back 1.7 m from the north one.
+        let start = wardrobe([2.0, 1.5, 1.0], std::f64::consts::PI);
+        // Nobody about: the nearer wall, south, turned half round (the test above).
+        scene.humans.clear();
+        scene.objects = vec![start.clone()];
+        polish_scene(&mut scene, 30);
+        assert!((scene.objects[0].center[1] - 0.35).abs() < 1e-9, "{:?}", scene.objects[0]);
+        // Someone walking along the south wall, 40 cm off it: the north wall, unturned.
+        let path = crate::geom::Polyline::new(vec![DVec2::new(0.4, 0.4), DVec2::new(3.6, 0.4)]).unwrap();
+        let mut walk = Motion::new(Body::default(), 30.0);
+        walk.walk(&path, 1.2);
+        scene.humans = vec![walk.into_human("h0")];
+        scene.objects = vec![start];
+        let r = polish_scene(&mut scene, 30);
+        assert_eq!(r.walled, 1, "{r:?}");
+        assert_eq!(scene.objects[0], wardrobe([2.0, 3.5 - 0.3 - 0.05, 1.0], std::f64::consts::PI), "{r:?}");
     }
 
     #[test]

@@ -15,7 +15,7 @@ use crate::data::placed_against_wall;
 use crate::geom::{OBox, Polygon};
 use crate::scene::{Category, Group};
 use glam::DVec2;
-use std::f64::consts::PI;
+use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Share of a side's width a wall must face for the side to count as against it.
 const FACING_SHARE: f64 = 0.6;
@@ -26,20 +26,25 @@ pub fn stands_against_wall(category: Category) -> bool {
     category.group() == Group::Bed || placed_against_wall(category)
 }
 
-/// The yaw and centre move (world, m) that put `b`'s back `WALL_GAP` from the nearest wall behind
-/// or in front of it, the piece turned half round for a wall in front; `None` when no wall faces
-/// either. (Quarter turns, to a wall beside the piece, measured no better on the test splits and
-/// swap its footprint's axes.)
-pub fn to_nearest_wall(b: &OBox, polygon: &Polygon) -> Option<(f64, DVec2)> {
-    let (_, ay) = b.axes();
+/// The yaws and centre moves (world, m) that put `b`'s back `WALL_GAP` from a wall: the walls behind
+/// it and in front of it (turned half round) nearest first, then the walls beside it (turned a
+/// quarter, which swaps its footprint's axes) nearest first; empty when no wall faces any side.
+/// The caller picks among them (polishing: the first of those least in people's way).
+pub fn wall_poses(b: &OBox, polygon: &Polygon) -> Vec<(f64, DVec2)> {
+    let (ax, ay) = b.axes();
     let half = b.half().truncate();
     let centre = b.center.truncate();
-    let gap = |n: DVec2| wall_gap(centre, n, half.y, half.x, polygon);
-    let (normal, turn, gap) = [(-ay, 0.0), (ay, PI)]
+    // (back normal, turn, quarter turn?): a turn by +π/2 puts the back (local −y) towards +x.
+    let sides = [(-ay, 0.0, false), (ay, PI, false), (ax, FRAC_PI_2, true), (-ax, -FRAC_PI_2, true)];
+    let mut poses: Vec<(bool, f64, f64, DVec2)> = sides
         .into_iter()
-        .filter_map(|(n, turn)| Some((n, turn, gap(n)?)))
-        .min_by(|x, y| x.2.total_cmp(&y.2))?;
-    Some((b.yaw + turn, normal * (gap - WALL_GAP)))
+        .filter_map(|(n, turn, quarter)| {
+            let gap = wall_gap(centre, n, half.y, half.x, polygon)?;
+            Some((quarter, gap, b.yaw + turn, n * (gap - WALL_GAP)))
+        })
+        .collect();
+    poses.sort_by(|x, y| x.0.cmp(&y.0).then(x.1.total_cmp(&y.1)));
+    poses.into_iter().map(|(_, _, yaw, m)| (yaw, m)).collect()
 }
 
 /// The move (world, m) that puts `b`'s back `WALL_GAP` from the wall behind it, unturned; `None`
@@ -53,7 +58,8 @@ pub fn to_wall_behind(b: &OBox, polygon: &Polygon) -> Option<DVec2> {
 
 /// How far (m) the nearest wall lies beyond the side of a footprint centred at `center` whose
 /// outward normal is `n`, `reach` from the centre, `across` half wide: walls parallel to the side
-/// (within 0.06°), facing at least `FACING_SHARE` of its width, not behind it by more than 1 cm.
+/// (within 0.06°), facing at least `FACING_SHARE` of its width, beyond the centre (a piece the model
+/// pushed through a wall goes back to that wall, not across the room to the next one).
 fn wall_gap(center: DVec2, n: DVec2, reach: f64, across: f64, polygon: &Polygon) -> Option<f64> {
     let along = DVec2::new(-n.y, n.x);
     let face = center + n * reach;
@@ -68,7 +74,7 @@ fn wall_gap(center: DVec2, n: DVec2, reach: f64, across: f64, polygon: &Polygon)
             let gap = (a - face).dot(n);
             let (ea, eb) = (a.dot(along).min(b.dot(along)), a.dot(along).max(b.dot(along)));
             let facing = (hi.min(eb) - lo.max(ea)).max(0.0);
-            (gap > -0.01 && facing >= FACING_SHARE * (hi - lo)).then_some(gap)
+            (gap > -reach && facing >= FACING_SHARE * (hi - lo)).then_some(gap)
         })
         .min_by(f64::total_cmp)
 }
@@ -83,17 +89,31 @@ mod tests {
     }
 
     #[test]
-    fn a_wardrobe_out_in_the_room_turns_its_back_to_the_nearest_wall_and_goes_there() {
-        // 1.6 × 0.6 m facing −y (yaw π): its front 0.9 m from the south wall (y = 0), its back 1.5 m
-        // from the north one (y = 3): turned half round and moved 0.85 m south.
+    fn a_wardrobe_out_in_the_room_may_turn_its_back_to_any_wall_the_nearest_in_front_or_behind_first() {
+        // 1.6 × 0.6 m facing −y (yaw π) at (2, 1.2) in a 4 × 3 m room: its front 0.9 m from the
+        // south wall (y = 0), its back 1.5 m from the north one, its sides (after a quarter turn,
+        // 0.3 m from the centre) 1.7 m from the west and east walls.
         let b = OBox::new(DVec3::new(2.0, 1.2, 1.0), DVec3::new(1.6, 0.6, 2.0), PI);
-        let (yaw, m) = to_nearest_wall(&b, &room()).unwrap();
-        assert!((yaw - 2.0 * PI).abs() < 1e-12, "{yaw}");
-        assert!((m - DVec2::new(0.0, -(0.9 - WALL_GAP))).length() < 1e-12, "{m}");
+        let poses = wall_poses(&b, &room());
+        let expected = [
+            (2.0 * PI, DVec2::new(0.0, -(0.9 - WALL_GAP))),
+            (PI, DVec2::new(0.0, 1.5 - WALL_GAP)),
+            // Turned +π/2 (yaw 3π/2, facing +x): the back goes west; −π/2: east.
+            (PI + FRAC_PI_2, DVec2::new(-(1.7 - WALL_GAP), 0.0)),
+            (PI - FRAC_PI_2, DVec2::new(1.7 - WALL_GAP, 0.0)),
+        ];
+        assert_eq!(poses.len(), expected.len(), "{poses:?}");
+        for ((yaw, m), (want_yaw, want_m)) in poses.iter().zip(expected) {
+            assert!((yaw - want_yaw).abs() < 1e-12 && (*m - want_m).length() < 1e-12, "{poses:?}");
+        }
         // Already against the south wall with its back, 5 cm off it, beside the east wall: stays.
         let b = OBox::new(DVec3::new(3.2, 0.35, 1.0), DVec3::new(1.6, 0.6, 2.0), 0.0);
-        let (yaw, m) = to_nearest_wall(&b, &room()).unwrap();
+        let (yaw, m) = wall_poses(&b, &room())[0];
         assert!(yaw.abs() < 1e-12 && m.length() < 1e-12, "{yaw} {m}");
+        // Pushed 10 cm through the south wall: back to it, not across the room.
+        let b = OBox::new(DVec3::new(2.0, 0.2, 1.0), DVec3::new(1.6, 0.6, 2.0), 0.0);
+        let (yaw, m) = wall_poses(&b, &room())[0];
+        assert!(yaw.abs() < 1e-12 && (m - DVec2::new(0.0, 0.1 + WALL_GAP)).length() < 1e-12, "{yaw} {m}");
     }
 
     #[test]
