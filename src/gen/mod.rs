@@ -25,6 +25,7 @@ mod overlaps;
 mod params;
 pub mod phys_guidance;
 mod polish;
+mod relocate;
 mod sampler;
 mod schedule;
 mod shipped;

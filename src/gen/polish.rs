@@ -46,9 +46,10 @@ use super::completion::{SeatGaps, height_for_surface, support_for};
 use super::deep_seats::trim_deep_seats;
 use super::inside::{CLEARANCE, fits_inside, inside_push, worst_offence};
 use super::overlaps::{narrow_by, resolve_overlaps};
+use super::relocate::{is_solid, relocate_off_paths};
 use super::walls::{stands_against_wall, to_wall_behind, wall_poses};
 use crate::eval::contact_iou;
-use crate::furniture::{PartRole, height_range, template};
+use crate::furniture::{height_range, template};
 use crate::geom::{OBox, facing, intersection_volume, iou_3d, wrap_angle};
 use crate::human::{Conditions, ContactBox};
 use crate::scene::{Action, Group, Object, Scene};
@@ -81,6 +82,9 @@ pub struct PolishReport {
     pub squared: usize,
     /// Pieces put back against a wall (`walls`; the data stands them so).
     pub walled: usize,
+    /// Wall pieces holding nobody moved to a free spot along the walls, out of people's way
+    /// (`relocate`).
+    pub relocated: usize,
     /// Double beds in people's way swapped for a single bed.
     pub swapped: usize,
     /// Deep seats trimmed at the front until their sitters' knees pass it (`deep_seats`).
@@ -128,10 +132,11 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
         .zip(&start)
         .map(|(o, s)| DVec2::new(o.center[0], o.center[1]).distance(*s))
         .fold(0.0, f64::max);
+    let holds: Vec<bool> = (0..scene.objects.len()).map(|i| holders.iter().any(|(_, h)| *h == i)).collect();
+    report.relocated = relocate_off_paths(scene, &clearance, &holds);
     report.swapped = single_beds_off_paths(scene, &cond, &gaps, &clearance, &holders);
     report.trimmed = trim_deep_seats(scene, &cond, &gaps, &holders);
     report.narrowed += fit_into_room(scene, &cond, &gaps, &holders);
-    let holds: Vec<bool> = (0..scene.objects.len()).map(|i| holders.iter().any(|(_, h)| *h == i)).collect();
     report.narrowed += narrow_off_paths(scene, &cond, &holds);
     let overlaps = resolve_overlaps(scene, &holds);
     report.narrowed += overlaps.narrowed;
@@ -642,8 +647,7 @@ pub(super) fn footprint_separations(a: &OBox, b: &OBox) -> Vec<DVec2> {
 fn path_push(o: &Object, clearance: &Clearance) -> DVec2 {
     let b = o.obox();
     // A piece without legs is solid to the floor: a sitter's feet cannot go under it.
-    let solid = !template(o).parts.iter().any(|p| p.role == PartRole::Leg);
-    let blocked = clearance.blocked(&b, solid);
+    let blocked = clearance.blocked(&b, is_solid(o));
     if blocked.is_empty() {
         return DVec2::ZERO;
     }

@@ -12,7 +12,7 @@
 
 use crate::data::layout::WALL_GAP;
 use crate::data::placed_against_wall;
-use crate::geom::{OBox, Polygon};
+use crate::geom::{OBox, Polygon, yaw_facing};
 use crate::scene::{Category, Group};
 use glam::DVec2;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -45,6 +45,33 @@ pub fn wall_poses(b: &OBox, polygon: &Polygon) -> Vec<(f64, DVec2)> {
         .collect();
     poses.sort_by(|x, y| x.0.cmp(&y.0).then(x.1.total_cmp(&y.1)));
     poses.into_iter().map(|(_, _, yaw, m)| (yaw, m)).collect()
+}
+
+/// Spacing of the spots [`wall_spots`] tries along a wall (m).
+const SPOT_STEP: f64 = 0.1;
+
+/// The poses (yaw, centre) that stand a `width` × `depth` footprint with its back `WALL_GAP` from
+/// a wall of `polygon`, facing into the room: along every wall longer than it, every `SPOT_STEP`
+/// from one end and the spot nearest `near`. Whether a pose fits the room (corners, other walls) is
+/// left to the caller.
+pub fn wall_spots(width: f64, depth: f64, near: DVec2, polygon: &Polygon) -> Vec<(f64, DVec2)> {
+    // Counter-clockwise polygons have the room on the left of each edge.
+    let left = polygon.signed_area() > 0.0;
+    let mut spots = Vec::new();
+    for (a, b) in polygon.edges() {
+        let len = a.distance(b);
+        let (lo, hi) = (width * 0.5, len - width * 0.5);
+        if hi < lo {
+            continue;
+        }
+        let along = (b - a) / len;
+        let inward = if left { along.perp() } else { -along.perp() };
+        let at = |t: f64| (yaw_facing(inward), a + along * t + inward * (depth * 0.5 + WALL_GAP));
+        let steps = ((hi - lo) / SPOT_STEP).floor() as usize;
+        spots.extend((0..=steps).map(|k| at(lo + k as f64 * SPOT_STEP)));
+        spots.push(at((near - a).dot(along).clamp(lo, hi)));
+    }
+    spots
 }
 
 /// The move (world, m) that puts `b`'s back `WALL_GAP` from the wall behind it, unturned; `None`
