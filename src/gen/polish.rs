@@ -82,8 +82,7 @@ pub struct PolishReport {
     pub squared: usize,
     /// Pieces put back against a wall (`walls`; the data stands them so).
     pub walled: usize,
-    /// Wall pieces holding nobody moved to a free spot along the walls, out of people's way
-    /// (`relocate`).
+    /// Pieces holding nobody moved out of people's way to a free spot (`relocate`).
     pub relocated: usize,
     /// Double beds in people's way swapped for a single bed.
     pub swapped: usize,

@@ -1,33 +1,39 @@
-//! Moving a wall piece that is still in people's way after polishing's rounds to a free spot along
-//! the walls (ours, part of polishing).
+//! Moving a piece that is still in people's way after polishing's rounds to a free spot nearby
+//! (ours, part of polishing).
 //!
 //! Polishing's rounds push a piece off the walkers only as far as the pieces around it let it go;
-//! a wardrobe or a sofa the model stood across a walkway often ends up in it still, or pushed out
-//! into the room. A piece the data stands against a wall (`walls`) that holds nobody and is in the
-//! bodies' way is moved to the nearest spot, with its back to a wall, where it is in nobody's way,
-//! inside the floor plan and clear of every other standing piece. Where no such spot exists it
-//! stays. This module does not move pieces that hold people, nor free-standing ones.
+//! a wardrobe, a sofa or a coffee table the model stood across a walkway often ends up in it still,
+//! or pushed out into the room. A piece that holds nobody and is in the bodies' way moves to the
+//! nearest spot where it is in nobody's way, inside the floor plan and clear of every other
+//! standing piece: a piece the data stands against a wall (`walls`) to a spot with its back to a
+//! wall anywhere in the room, any other piece to one on a 10 cm grid around it, as it stands or
+//! turned a quarter, at most 3 m away. Where no such spot exists it stays. This module does not
+//! move pieces that hold people.
 
 use super::clearance::Clearance;
 use super::inside::fits_inside;
 use super::walls::{stands_against_wall, wall_spots};
 use crate::furniture::{PartRole, template};
-use crate::geom::{OBox, intersection_volume};
+use crate::geom::{OBox, Polygon, intersection_volume, wrap_angle};
 use crate::scene::{Object, Scene};
+use glam::DVec2;
+use std::f64::consts::FRAC_PI_2;
 
-/// Moves every piece the data stands against a wall that holds nobody (`holds[i]` false) and is in
-/// the bodies' way to the nearest free spot along the walls. Returns how many it moved.
+/// Spacing of the grid of spots a free-standing piece may move to (m).
+const GRID_STEP: f64 = 0.1;
+/// Farthest a free-standing piece moves (m): beyond, it would leave the group it stands in.
+const MAX_FREE_MOVE: f64 = 3.0;
+
+/// Moves every standing piece that holds nobody (`holds[i]` false) and is in the bodies' way to
+/// the nearest free spot. Returns how many it moved.
 pub(super) fn relocate_off_paths(scene: &mut Scene, clearance: &Clearance, holds: &[bool]) -> usize {
     let polygon = scene.floor_plan.polygon();
     let mut moved = 0;
     for (i, &held) in holds.iter().enumerate() {
         let o = &scene.objects[i];
-        if held || !stands_against_wall(o.category) || o.category.is_hanging() {
-            continue;
-        }
         let solid = is_solid(o);
         let b = o.obox();
-        if clearance.blocked(&b, solid).is_empty() {
+        if held || o.category.is_hanging() || clearance.blocked(&b, solid).is_empty() {
             continue;
         }
         let others: Vec<OBox> = scene
@@ -43,7 +49,12 @@ pub(super) fn relocate_off_paths(scene: &mut Scene, clearance: &Clearance, holds
                 && others.iter().all(|x| intersection_volume(c, x) <= 1e-9)
         };
         let here = b.center.truncate();
-        let best = wall_spots(b.size.x, b.size.y, b.center.truncate(), &polygon)
+        let spots = if stands_against_wall(o.category) {
+            wall_spots(b.size.x, b.size.y, here, &polygon)
+        } else {
+            grid_spots(&b, &polygon)
+        };
+        let best = spots
             .into_iter()
             .map(|(yaw, centre)| OBox::new(centre.extend(b.center.z), b.size, yaw))
             .filter(free)
@@ -56,6 +67,19 @@ pub(super) fn relocate_off_paths(scene: &mut Scene, clearance: &Clearance, holds
         }
     }
     moved
+}
+
+/// Poses (yaw, centre) for a free-standing piece `b`: its centre moved by whole `GRID_STEP`s at
+/// most `MAX_FREE_MOVE` and inside `polygon`, as it stands or turned a quarter.
+fn grid_spots(b: &OBox, polygon: &Polygon) -> Vec<(f64, DVec2)> {
+    let here = b.center.truncate();
+    let n = (MAX_FREE_MOVE / GRID_STEP).floor() as i32;
+    let turned = wrap_angle(b.yaw + FRAC_PI_2);
+    (-n..=n)
+        .flat_map(|i| (-n..=n).map(move |j| here + DVec2::new(i as f64, j as f64) * GRID_STEP))
+        .filter(|c| c.distance(here) <= MAX_FREE_MOVE && polygon.contains(*c))
+        .flat_map(|c| [(b.yaw, c), (turned, c)])
+        .collect()
 }
 
 /// Whether `o` stands solid to the floor (no legs to put feet between): sitters' and touchers'
@@ -71,17 +95,25 @@ mod tests {
     use crate::geom::{RoomWindow, facing};
     use crate::human::{Body, Motion};
     use crate::scene::{Category, RoomType};
-    use glam::DVec2;
 
-    #[test]
-    fn a_wardrobe_across_a_walkway_goes_to_the_nearest_free_spot_against_a_wall() {
-        let mut scene = generate_room(RoomType::Bedroom, 3, 0, false).scene;
-        scene.floor_plan.polygon = vec![[0.0, 0.0], [4.0, 0.0], [4.0, 3.0], [0.0, 3.0]];
-        // Someone walking the length of the room at y = 1.5.
-        let path = crate::geom::Polyline::new(vec![DVec2::new(0.3, 1.5), DVec2::new(3.7, 1.5)]).unwrap();
+    /// A `w` × `d` m room with someone walking its length along y = `d` / 2, 30 cm from its ends.
+    fn walked_room(room: RoomType, w: f64, d: f64) -> Scene {
+        let mut scene = generate_room(room, 3, 0, false).scene;
+        scene.floor_plan.polygon = vec![[0.0, 0.0], [w, 0.0], [w, d], [0.0, d]];
+        let path = crate::geom::Polyline::new(vec![DVec2::new(0.3, d * 0.5), DVec2::new(w - 0.3, d * 0.5)]).unwrap();
         let mut walk = Motion::new(Body::default(), 30.0);
         walk.walk(&path, 1.2);
         scene.humans = vec![walk.into_human("h0")];
+        scene
+    }
+
+    fn clearance_of(scene: &Scene) -> Clearance {
+        Clearance::of(scene, &RoomWindow::for_room(scene.room_type, &scene.floor_plan.polygon()))
+    }
+
+    #[test]
+    fn a_wardrobe_across_a_walkway_goes_to_the_nearest_free_spot_against_a_wall() {
+        let mut scene = walked_room(RoomType::Bedroom, 4.0, 3.0);
         let wardrobe = Object {
             id: "o0".into(),
             category: Category::Wardrobe,
@@ -99,7 +131,7 @@ mod tests {
         };
         scene.objects = vec![wardrobe.clone(), cabinet.clone()];
         let polygon = scene.floor_plan.polygon();
-        let clearance = Clearance::of(&scene, &RoomWindow::for_room(RoomType::Bedroom, &polygon));
+        let clearance = clearance_of(&scene);
         assert!(!clearance.blocked(&wardrobe.obox(), true).is_empty());
         // Holding someone: it stays.
         assert_eq!(relocate_off_paths(&mut scene, &clearance, &[true, false]), 0);
@@ -120,5 +152,38 @@ mod tests {
         assert_eq!(o.center[2], wardrobe.center[2]);
         // The cabinet, out of everybody's way, stays.
         assert_eq!(scene.objects[1], cabinet);
+    }
+
+    #[test]
+    fn a_coffee_table_in_a_walkway_steps_just_off_it_and_stays_where_nothing_is_free() {
+        let mut scene = walked_room(RoomType::Living, 4.0, 3.0);
+        let table = Object {
+            id: "o0".into(),
+            category: Category::CoffeeTable,
+            center: [2.0, 1.4, 0.2],
+            size: [1.0, 0.6, 0.4],
+            yaw: 0.0,
+        };
+        scene.objects = vec![table.clone()];
+        let clearance = clearance_of(&scene);
+        let solid = is_solid(&table);
+        assert_eq!(relocate_off_paths(&mut scene, &clearance, &[false]), 1);
+        let o = &scene.objects[0];
+        // Straight off the walkway, to the side it leant to (south), by whole 10 cm steps: the
+        // first spot clear of the walker, one step less is not.
+        let dy = o.center[1] - table.center[1];
+        assert!(dy < 0.0 && (dy / GRID_STEP - (dy / GRID_STEP).round()).abs() < 1e-9, "{o:?}");
+        assert_eq!((o.center[0], o.center[2], o.yaw), (table.center[0], table.center[2], table.yaw));
+        assert!(clearance.blocked(&o.obox(), solid).is_empty(), "{o:?}");
+        let closer = OBox::new(o.obox().center + glam::DVec3::new(0.0, GRID_STEP, 0.0), o.obox().size, 0.0);
+        assert!(!clearance.blocked(&closer, solid).is_empty(), "{o:?}");
+        // In a corridor the walker fills, nothing is free: it stays.
+        let mut scene = walked_room(RoomType::Living, 4.0, 0.9);
+        let table = Object { center: [2.0, 0.45, 0.2], size: [0.5, 0.5, 0.4], ..table };
+        scene.objects = vec![table.clone()];
+        let clearance = clearance_of(&scene);
+        assert!(!clearance.blocked(&table.obox(), solid).is_empty());
+        assert_eq!(relocate_off_paths(&mut scene, &clearance, &[false]), 0);
+        assert_eq!(scene.objects[0], table);
     }
 }
