@@ -282,9 +282,9 @@ fn fit_into_room(scene: &mut Scene, cond: &Conditions, gaps: &[SeatGaps], holder
 }
 
 /// Puts every piece the data stands against a wall back against one (`walls`): a piece holding
-/// nobody against the wall behind or in front of it (turned half round), whichever puts it less in
-/// people's way, else the nearer; a holder towards the wall behind it as far as its people stay on
-/// it. Returns how many pieces moved or turned.
+/// nobody against the first of [`wall_poses`] (behind, in front, beside) least in people's way; a
+/// holder towards the wall behind it as far as its people stay on it. Returns how many pieces moved
+/// or turned.
 fn back_to_walls(
     scene: &mut Scene,
     cond: &Conditions,

@@ -107,6 +107,10 @@ mod tests {
         scene
     }
 
+    fn piece(id: &str, category: Category, center: [f64; 3], size: [f64; 3]) -> Object {
+        Object { id: id.into(), category, center, size, yaw: 0.0 }
+    }
+
     fn clearance_of(scene: &Scene) -> Clearance {
         Clearance::of(scene, &RoomWindow::for_room(scene.room_type, &scene.floor_plan.polygon()))
     }
@@ -114,21 +118,9 @@ mod tests {
     #[test]
     fn a_wardrobe_across_a_walkway_goes_to_the_nearest_free_spot_against_a_wall() {
         let mut scene = walked_room(RoomType::Bedroom, 4.0, 3.0);
-        let wardrobe = Object {
-            id: "o0".into(),
-            category: Category::Wardrobe,
-            center: [2.0, 1.5, 1.0],
-            size: [1.6, 0.6, 2.0],
-            yaw: 0.0,
-        };
+        let wardrobe = piece("o0", Category::Wardrobe, [2.0, 1.5, 1.0], [1.6, 0.6, 2.0]);
         // A cabinet against the south wall where the wardrobe would otherwise go first.
-        let cabinet = Object {
-            id: "o1".into(),
-            category: Category::Cabinet,
-            center: [2.0, 0.25, 0.4],
-            size: [1.0, 0.4, 0.8],
-            yaw: 0.0,
-        };
+        let cabinet = piece("o1", Category::Cabinet, [2.0, 0.25, 0.4], [1.0, 0.4, 0.8]);
         scene.objects = vec![wardrobe.clone(), cabinet.clone()];
         let polygon = scene.floor_plan.polygon();
         let clearance = clearance_of(&scene);
@@ -157,13 +149,7 @@ mod tests {
     #[test]
     fn a_coffee_table_in_a_walkway_steps_just_off_it_and_stays_where_nothing_is_free() {
         let mut scene = walked_room(RoomType::Living, 4.0, 3.0);
-        let table = Object {
-            id: "o0".into(),
-            category: Category::CoffeeTable,
-            center: [2.0, 1.4, 0.2],
-            size: [1.0, 0.6, 0.4],
-            yaw: 0.0,
-        };
+        let table = piece("o0", Category::CoffeeTable, [2.0, 1.4, 0.2], [1.0, 0.6, 0.4]);
         scene.objects = vec![table.clone()];
         let clearance = clearance_of(&scene);
         let solid = is_solid(&table);
