@@ -3,12 +3,13 @@
 //! calibrated test splits every one of them has its back within 10 cm of a wall, while the models
 //! leave two thirds of them out in the room, where walkers walk into them.
 //!
-//! For a square piece (polishing squares every piece first) the nearest wall parallel to one of its
-//! sides and facing that side over most of its width is found; a piece that holds nobody is turned
-//! to put its back to that wall and moved there, `WALL_GAP` from it; a piece that holds people is
-//! not turned and only moves towards the wall behind its back, as far as its people stay on it
-//! (the caller limits the move). This module only computes poses; it does not look at other
-//! pieces (polishing's rounds separate what this pushes together).
+//! For a square piece (polishing squares every piece first) the walls parallel to its sides and
+//! facing a side over most of its width are found: a piece that holds nobody may be turned to put
+//! its back to any of them and moved there, `WALL_GAP` from it ([`wall_poses`]; the caller picks
+//! the pose least in people's way); a piece that holds people is not turned and only moves towards
+//! the wall behind its back, as far as its people stay on it (the caller limits the move). A wall
+//! for relocating a piece anywhere along it: [`wall_spots`]. This module only computes poses; it
+//! does not look at people or other pieces.
 
 use crate::data::layout::WALL_GAP;
 use crate::data::placed_against_wall;
