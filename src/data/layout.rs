@@ -9,7 +9,7 @@
 
 use super::Rng;
 use crate::furniture::catalog_items;
-use crate::geom::{OBox, Polygon, facing, footprint_intersection_area, intersection_volume, yaw_facing};
+use crate::geom::{OBox, Polygon, Wall, facing, footprint_intersection_area, intersection_volume, yaw_facing};
 use crate::scene::{Category, FloorPlan, Group, Object};
 use glam::{DVec2, DVec3};
 use std::collections::VecDeque;
@@ -110,18 +110,15 @@ impl Layout {
 
     /// A pose against a wall: (centre, yaw) for a footprint `w` × `d`, or `None` if no wall fits.
     fn wall_spot(&self, w: f64, d: f64, rng: &mut Rng) -> Option<(DVec2, f64)> {
-        let edges: Vec<(DVec2, DVec2)> = self.polygon.edges().collect();
+        let walls: Vec<Wall> = self.polygon.walls().collect();
         let weights: Vec<f64> =
-            edges.iter().map(|(a, b)| if a.distance(*b) > w + 0.1 { a.distance(*b) } else { 0.0 }).collect();
+            walls.iter().map(|wall| if wall.length > w + 0.1 { wall.length } else { 0.0 }).collect();
         if weights.iter().all(|&x| x == 0.0) {
             return None;
         }
-        let (a, b) = edges[rng.weighted(&weights)];
-        let len = a.distance(b);
-        let dir = (b - a) / len;
-        let inward = DVec2::new(-dir.y, dir.x);
-        let t = rng.uniform(w * 0.5 + 0.02, len - w * 0.5 - 0.02);
-        Some((a + dir * t + inward * (d * 0.5 + WALL_GAP), yaw_facing(inward)))
+        let wall = walls[rng.weighted(&weights)];
+        let t = rng.uniform(w * 0.5 + 0.02, wall.length - w * 0.5 - 0.02);
+        Some((wall.point(t, d * 0.5 + WALL_GAP), yaw_facing(wall.inward)))
     }
 
     /// Places a piece of `size` against a wall; `None` after `tries` failures.

@@ -5,12 +5,11 @@
 //! was the commonest way a walker walked into a bed. This module only swaps; polishing decides when
 //! (after its rounds) and keeps everything else.
 
-use super::clearance::Clearance;
-use super::completion::{SeatGaps, median_size};
-use super::polish::{held_by, shift};
+use super::completion::median_size;
+use super::occupancy::Occupancy;
+use super::polish::shift;
 use crate::eval::contact_iou;
 use crate::furniture::size_range;
-use crate::human::Conditions;
 use crate::scene::{Category, Object, Scene};
 
 /// Floor area (m²) a double bed must keep from people's way for `single_beds_off_paths` to swap it:
@@ -22,13 +21,7 @@ const SWAP_BLOCKED_AREA: f64 = 0.02;
 /// way, where that clears part of the way (or narrows it to the narrowest real double bed, where
 /// that clears all of it), keeps what it holds as covered (a tenth off at most) and
 /// it holds at most one person. Returns how many it swapped.
-pub(super) fn single_beds_off_paths(
-    scene: &mut Scene,
-    cond: &Conditions,
-    gaps: &[SeatGaps],
-    clearance: &Clearance,
-    holders: &[(usize, usize)],
-) -> usize {
+pub(super) fn single_beds_off_paths(scene: &mut Scene, people: &Occupancy) -> usize {
     let width = median_size(Category::SingleBed)[0];
     let mut swapped = 0;
     for i in 0..scene.objects.len() {
@@ -36,13 +29,13 @@ pub(super) fn single_beds_off_paths(
         if o.category != Category::DoubleBed || o.size[0] <= width {
             continue;
         }
-        let held = held_by(holders, cond, gaps, i);
+        let held = people.held_by(i);
         if held.len() > 1 {
             continue;
         }
         let b = o.obox();
-        let blocked = clearance.blocked(&b, true);
-        if (blocked.len() as f64) * clearance.window().pixel_area() < SWAP_BLOCKED_AREA {
+        let blocked = people.clearance.blocked(&b, true);
+        if (blocked.len() as f64) * people.clearance.window().pixel_area() < SWAP_BLOCKED_AREA {
             continue;
         }
         // Cut from the side the blocked pixels are on (local x).
@@ -60,13 +53,13 @@ pub(super) fn single_beds_off_paths(
         // A double bed as narrow as the narrowest real one, where that clears the whole way: the
         // data's share of double beds stays.
         let narrowest = cut_to(Category::DoubleBed, size_range(Category::DoubleBed, 0).0.min(o.size[0]));
-        if clearance.blocked(&narrowest.obox(), true).is_empty() && keeps_covered(&narrowest) {
+        if people.clearance.blocked(&narrowest.obox(), true).is_empty() && keeps_covered(&narrowest) {
             scene.objects[i] = narrowest;
             swapped += 1;
             continue;
         }
         let single = cut_to(Category::SingleBed, width);
-        let clears = clearance.blocked(&single.obox(), true).len() < blocked.len();
+        let clears = people.clearance.blocked(&single.obox(), true).len() < blocked.len();
         if clears && keeps_covered(&single) {
             scene.objects[i] = single;
             swapped += 1;
@@ -96,10 +89,10 @@ mod tests {
             yaw: 0.0,
         };
         scene.objects = vec![bed.clone()];
-        let cond = Conditions::of(&scene);
-        let clearance = Clearance::of(&scene, &cond.window);
+        let people = Occupancy::of(&scene);
+        let clearance = &people.clearance;
         let before = clearance.blocked(&bed.obox(), true).len();
-        assert_eq!(single_beds_off_paths(&mut scene, &cond, &[], &clearance, &[]), 1);
+        assert_eq!(single_beds_off_paths(&mut scene, &people), 1);
         let o = &scene.objects[0];
         assert_eq!((o.category, o.size[0]), (Category::SingleBed, median_size(Category::SingleBed)[0]));
         assert!((o.center[0] - o.size[0] * 0.5 - (bed.center[0] - 0.9)).abs() < 1e-9, "the −x side stays: {o:?}");
@@ -113,8 +106,8 @@ mod tests {
         let h = &scene.humans[0];
         let p = h.joint_at(h.frames.len() / 2, h.skeleton.joint("pelvis").unwrap()).truncate();
         scene.objects.clear();
-        let cond = Conditions::of(&scene);
-        let clearance = Clearance::of(&scene, &cond.window);
+        let people = Occupancy::of(&scene);
+        let clearance = &people.clearance;
         // A 1.8 m wide bed west of a walker: moved west until clear of the way, then back by 0.25 m,
         // into it by less than the 0.483 m that cutting it to the narrowest real double bed
         // (1.317 m) takes off its +x side.
@@ -131,7 +124,7 @@ mod tests {
         let blocked = clearance.blocked(&bed.obox(), true).len() as f64 * clearance.window().pixel_area();
         assert!(blocked >= SWAP_BLOCKED_AREA, "{blocked}");
         scene.objects = vec![bed.clone()];
-        assert_eq!(single_beds_off_paths(&mut scene, &cond, &[], &clearance, &[]), 1);
+        assert_eq!(single_beds_off_paths(&mut scene, &people), 1);
         let o = &scene.objects[0];
         let narrowest = size_range(Category::DoubleBed, 0).0;
         assert!((narrowest - 1.317).abs() < 1e-9, "catalog.csv's narrowest double bed: {narrowest}");

@@ -1,29 +1,23 @@
 //! Deep seats trimmed to their sitters. Polishing puts a sitter's support box on a chair or sofa
-//! near enough its front edge for the knees to pass it ([`SeatGaps`]), but a deep seat against a
+//! near enough its front edge for the knees to pass it ([`SeatGaps`](super::completion::SeatGaps)), but a deep seat against a
 //! wall cannot always move that far: then the seat loses depth at the front, its back staying
 //! where it is, until the sitters' lower legs hang clear of it as the data's do. Only depth, never
 //! below the category's shallowest real piece; a sofa that would have to be shallower than that (an
 //! L-shaped sofa or a chaise longue, 1.4 m and more) becomes a multi-seat sofa. Nothing moves.
 
-use super::completion::SeatGaps;
-use super::polish::{held_by, local_extent, shift};
+use super::occupancy::Occupancy;
+use super::polish::{local_extent, shift};
 use crate::furniture::{size_range, template};
-use crate::human::Conditions;
 use crate::scene::{Action, Category, Group, Object, Scene};
 
-/// Trims every chair and sofa whose sitters sit further back than [`SeatGaps::front`] allows
+/// Trims every chair and sofa whose sitters sit further back than [`SeatGaps::front`](super::completion::SeatGaps::front) allows
 /// (a sofa too deep for any real piece of its category becomes a multi-seat sofa). Returns how
 /// many it trimmed.
-pub(super) fn trim_deep_seats(
-    scene: &mut Scene,
-    cond: &Conditions,
-    gaps: &[SeatGaps],
-    holders: &[(usize, usize)],
-) -> usize {
+pub(super) fn trim_deep_seats(scene: &mut Scene, people: &Occupancy) -> usize {
     let swap_to = Some(Category::MultiSeatSofa).filter(|c| scene.room_type.categories().contains(c));
     let mut trimmed = 0;
     for i in 0..scene.objects.len() {
-        let held = held_by(holders, cond, gaps, i);
+        let held = people.held_by(i);
         let sitters: Vec<_> = held.iter().filter(|(c, _)| c.action == Action::Sit).collect();
         let o = &mut scene.objects[i];
         if sitters.is_empty() || !matches!(o.category.group(), Group::Chair | Group::Sofa) {
@@ -67,7 +61,9 @@ fn trim_front(o: &mut Object, cut: f64) {
 mod tests {
     use super::*;
     use crate::data::generate_room;
+    use crate::generator::completion::SeatGaps;
     use crate::generator::polish_scene;
+    use crate::human::Conditions;
     use crate::human::KNEE_OVERHANG;
     use crate::scene::RoomType;
 

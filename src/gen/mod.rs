@@ -21,6 +21,7 @@ pub mod guidance;
 pub mod inference;
 mod inside;
 mod model;
+mod occupancy;
 mod overlaps;
 mod params;
 pub mod phys_guidance;

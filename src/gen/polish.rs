@@ -45,6 +45,7 @@ use super::clearance::Clearance;
 use super::completion::{SeatGaps, height_for_surface, support_for};
 use super::deep_seats::trim_deep_seats;
 use super::inside::{CLEARANCE, fits_inside, inside_push, worst_offence};
+use super::occupancy::Occupancy;
 use super::overlaps::{narrow_by, resolve_overlaps};
 use super::relocate::{is_solid, relocate_off_paths};
 use super::walls::{stands_against_wall, to_wall_behind, wall_poses};
@@ -104,26 +105,23 @@ const COVERED: f64 = 0.5;
 /// uncovered and a new piece can be added for it; then squares up what pokes out of the walls,
 /// narrows free pieces off the walkers' feet and resolves the overlaps that are left.
 pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
-    let cond = Conditions::of(scene);
-    let clearance = Clearance::of(scene, &cond.window);
-    let gaps: Vec<SeatGaps> = cond.contact_boxes.iter().map(|c| SeatGaps::of(scene, c)).collect();
+    let mut people = Occupancy::of(scene);
     let mut report = PolishReport::default();
     let start: Vec<DVec2> = scene.objects.iter().map(|o| DVec2::new(o.center[0], o.center[1])).collect();
-    let mut holders = Vec::new();
     for pass in 0..2 {
-        holders = assign_contacts(scene, &cond);
-        let missing: Vec<usize> = (0..cond.contact_boxes.len())
+        people.holders = assign_contacts(scene, &people.cond);
+        let missing: Vec<usize> = (0..people.cond.contact_boxes.len())
             .filter(|k| match pass {
-                0 => !holders.iter().any(|(b, _)| b == k),
-                _ => contact_iou(&cond.contact_boxes[*k].obox, &scene.objects) < COVERED,
+                0 => !people.holders.iter().any(|(b, _)| b == k),
+                _ => contact_iou(&people.cond.contact_boxes[*k].obox, &scene.objects) < COVERED,
             })
             .collect();
-        let added = complete_supports(scene, &cond, &missing, &mut holders);
+        let added = complete_supports(scene, &people.cond, &missing, &mut people.holders);
         if pass > 0 && added == 0 {
             break;
         }
         report.added += added;
-        polish_rounds(scene, &cond, &gaps, &clearance, &holders, rounds, &mut report);
+        polish_rounds(scene, &people, rounds, &mut report);
     }
     report.max_move = scene
         .objects
@@ -131,12 +129,12 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
         .zip(&start)
         .map(|(o, s)| DVec2::new(o.center[0], o.center[1]).distance(*s))
         .fold(0.0, f64::max);
-    let holds: Vec<bool> = (0..scene.objects.len()).map(|i| holders.iter().any(|(_, h)| *h == i)).collect();
-    report.relocated = relocate_off_paths(scene, &clearance, &holds);
-    report.swapped = single_beds_off_paths(scene, &cond, &gaps, &clearance, &holders);
-    report.trimmed = trim_deep_seats(scene, &cond, &gaps, &holders);
-    report.narrowed += fit_into_room(scene, &cond, &gaps, &holders);
-    report.narrowed += narrow_off_paths(scene, &cond, &holds);
+    let holds = people.holding(scene.objects.len());
+    report.relocated = relocate_off_paths(scene, &people.clearance, &holds);
+    report.swapped = single_beds_off_paths(scene, &people);
+    report.trimmed = trim_deep_seats(scene, &people);
+    report.narrowed += fit_into_room(scene, &people);
+    report.narrowed += narrow_off_paths(scene, &people.cond, &holds);
     let overlaps = resolve_overlaps(scene, &holds);
     report.narrowed += overlaps.narrowed;
     report.removed = overlaps.removed;
@@ -144,15 +142,8 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
 }
 
 /// One pass: turning and fitting the holders, then up to `rounds` rounds of moves.
-fn polish_rounds(
-    scene: &mut Scene,
-    cond: &Conditions,
-    gaps: &[SeatGaps],
-    clearance: &Clearance,
-    holders: &[(usize, usize)],
-    rounds: usize,
-    report: &mut PolishReport,
-) {
+fn polish_rounds(scene: &mut Scene, people: &Occupancy, rounds: usize, report: &mut PolishReport) {
+    let Occupancy { cond, gaps, clearance, holders } = people;
     let polygon = scene.floor_plan.polygon();
     let start_yaw: Vec<f64> = scene.objects.iter().map(|o| o.yaw).collect();
     // A bed with a sleeper keeps its orientation whatever its sitters face (beds are not turned to
@@ -181,10 +172,9 @@ fn polish_rounds(
             report.squared += (wrap_angle(o.yaw - start).abs() > 1e-3) as usize;
         }
     }
-    report.walled += back_to_walls(scene, cond, gaps, clearance, holders);
-    let mobility: Vec<f64> = (0..scene.objects.len())
-        .map(|i| if holders.iter().any(|(_, h)| *h == i) { ANCHORED_MOBILITY } else { 1.0 })
-        .collect();
+    report.walled += back_to_walls(scene, people);
+    let mobility: Vec<f64> =
+        (0..scene.objects.len()).map(|i| if people.holds(i) { ANCHORED_MOBILITY } else { 1.0 }).collect();
     for round in 0..rounds {
         let before: Vec<[f64; 3]> = scene.objects.iter().map(|o| o.center).collect();
         // The last third of the rounds leaves the contacts where they are, the last five the paths.
@@ -200,7 +190,7 @@ fn polish_rounds(
             shift(o, (moves[i] / counts[i].max(1) as f64).clamp_length_max(MAX_STEP));
             if round + 5 < rounds {
                 // A holder gives way to walkers only as far as its people stay on it.
-                let push = within_slack(o, &held_by(holders, cond, gaps, i), path_push(o, clearance));
+                let push = within_slack(o, &people.held_by(i), path_push(o, clearance));
                 shift(o, push.clamp_length_max(MAX_STEP));
             }
         }
@@ -244,7 +234,7 @@ fn polish_rounds(
 /// Moves every piece the rounds left poking out of the floor plan back over the contact boxes it
 /// holds and inside; where it still does not fit, narrows it by what sticks out (at most 10 cm and
 /// a quarter of its size) if that makes it fit. Returns how many pieces were narrowed.
-fn fit_into_room(scene: &mut Scene, cond: &Conditions, gaps: &[SeatGaps], holders: &[(usize, usize)]) -> usize {
+fn fit_into_room(scene: &mut Scene, people: &Occupancy) -> usize {
     let polygon = scene.floor_plan.polygon();
     let mut narrowed = 0;
     for i in 0..scene.objects.len() {
@@ -253,7 +243,7 @@ fn fit_into_room(scene: &mut Scene, cond: &Conditions, gaps: &[SeatGaps], holder
         }
         let before = scene.objects[i].clone();
         let o = &mut scene.objects[i];
-        let held = held_by(holders, cond, gaps, i);
+        let held = people.held_by(i);
         if !held.is_empty() {
             let m = held.iter().map(|(b, gap)| containment_shift(b, gap, o)).sum::<DVec2>() / held.len() as f64;
             shift(o, m);
@@ -285,25 +275,19 @@ fn fit_into_room(scene: &mut Scene, cond: &Conditions, gaps: &[SeatGaps], holder
 /// nobody against the first of [`wall_poses`] (behind, in front, beside) least in people's way; a
 /// holder towards the wall behind it as far as its people stay on it. Returns how many pieces moved
 /// or turned.
-fn back_to_walls(
-    scene: &mut Scene,
-    cond: &Conditions,
-    gaps: &[SeatGaps],
-    clearance: &Clearance,
-    holders: &[(usize, usize)],
-) -> usize {
+fn back_to_walls(scene: &mut Scene, people: &Occupancy) -> usize {
     let polygon = scene.floor_plan.polygon();
     let mut walled = 0;
     for i in 0..scene.objects.len() {
         if !stands_against_wall(scene.objects[i].category) {
             continue;
         }
-        let held = held_by(holders, cond, gaps, i);
+        let held = people.held_by(i);
         let o = &mut scene.objects[i];
         let (yaw, m) = if held.is_empty() {
             let in_the_way = |&(yaw, m): &(f64, DVec2)| {
                 let b = o.obox();
-                clearance.blocked(&OBox::new(b.center + m.extend(0.0), b.size, yaw), true).len()
+                people.clearance.blocked(&OBox::new(b.center + m.extend(0.0), b.size, yaw), true).len()
             };
             // `min_by_key` keeps the first of equals: the nearer wall.
             let Some(pose) = wall_poses(&o.obox(), &polygon).into_iter().min_by_key(in_the_way) else { continue };
@@ -369,16 +353,6 @@ fn narrow_off_paths(scene: &mut Scene, cond: &Conditions, holds: &[bool]) -> usi
         narrowed += narrow_by(o, dir * cut) as usize;
     }
     narrowed
-}
-
-/// The contact boxes object `i` holds, each with its seat gaps.
-pub(super) fn held_by<'a>(
-    holders: &[(usize, usize)],
-    cond: &'a Conditions,
-    gaps: &'a [SeatGaps],
-    i: usize,
-) -> Vec<(&'a ContactBox, &'a SeatGaps)> {
-    holders.iter().filter(|(_, h)| *h == i).map(|(b, _)| (&cond.contact_boxes[*b], &gaps[*b])).collect()
 }
 
 pub(super) fn shift(o: &mut Object, m: DVec2) {

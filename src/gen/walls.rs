@@ -56,21 +56,16 @@ const SPOT_STEP: f64 = 0.1;
 /// from one end and the spot nearest `near`. Whether a pose fits the room (corners, other walls) is
 /// left to the caller.
 pub fn wall_spots(width: f64, depth: f64, near: DVec2, polygon: &Polygon) -> Vec<(f64, DVec2)> {
-    // Counter-clockwise polygons have the room on the left of each edge.
-    let left = polygon.signed_area() > 0.0;
     let mut spots = Vec::new();
-    for (a, b) in polygon.edges() {
-        let len = a.distance(b);
-        let (lo, hi) = (width * 0.5, len - width * 0.5);
+    for wall in polygon.walls() {
+        let (lo, hi) = (width * 0.5, wall.length - width * 0.5);
         if hi < lo {
             continue;
         }
-        let along = (b - a) / len;
-        let inward = if left { along.perp() } else { -along.perp() };
-        let at = |t: f64| (yaw_facing(inward), a + along * t + inward * (depth * 0.5 + WALL_GAP));
+        let at = |t: f64| (yaw_facing(wall.inward), wall.point(t, depth * 0.5 + WALL_GAP));
         let steps = ((hi - lo) / SPOT_STEP).floor() as usize;
         spots.extend((0..=steps).map(|k| at(lo + k as f64 * SPOT_STEP)));
-        spots.push(at((near - a).dot(along).clamp(lo, hi)));
+        spots.push(at((near - wall.start).dot(wall.along).clamp(lo, hi)));
     }
     spots
 }

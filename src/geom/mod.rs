@@ -15,6 +15,6 @@ mod triangulate;
 pub use clip::{clip_convex, footprint_intersection_area, signed_area};
 pub use intersection::{intersection_volume, iou_3d};
 pub use obox::{OBox, facing, wrap_angle, yaw_facing};
-pub use polygon::{BoundarySample, Polygon, point_segment_distance, segments_intersect};
+pub use polygon::{BoundarySample, Polygon, Wall, point_segment_distance, segments_intersect};
 pub use polyline::Polyline;
 pub use raster::{Mask, RES, RoomWindow};

@@ -19,6 +19,27 @@ pub struct BoundarySample {
     pub normal: DVec2,
 }
 
+/// One edge of a polygon seen from inside: where it starts, its unit direction, its length and the
+/// unit normal pointing into the polygon (whichever way the vertices wind).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Wall {
+    /// The edge's first vertex.
+    pub start: DVec2,
+    /// Unit direction from the first vertex to the second (zero for a zero-length edge).
+    pub along: DVec2,
+    /// Length of the edge.
+    pub length: f64,
+    /// Unit normal into the polygon.
+    pub inward: DVec2,
+}
+
+impl Wall {
+    /// The point `t` along the wall from its start and `offset` into the room.
+    pub fn point(&self, t: f64, offset: f64) -> DVec2 {
+        self.start + self.along * t + self.inward * offset
+    }
+}
+
 impl Polygon {
     /// A polygon from its vertices.
     pub fn new(points: Vec<DVec2>) -> Polygon {
@@ -34,6 +55,17 @@ impl Polygon {
     pub fn edges(&self) -> impl Iterator<Item = (DVec2, DVec2)> + '_ {
         let n = self.points.len();
         (0..n).map(move |i| (self.points[i], self.points[(i + 1) % n]))
+    }
+
+    /// Every edge as a wall seen from inside, in edge order.
+    pub fn walls(&self) -> impl Iterator<Item = Wall> + '_ {
+        // Counter-clockwise polygons have the inside on the left of each edge.
+        let left = self.signed_area() > 0.0;
+        self.edges().map(move |(a, b)| {
+            let length = a.distance(b);
+            let along = if length > 0.0 { (b - a) / length } else { DVec2::ZERO };
+            Wall { start: a, along, length, inward: if left { along.perp() } else { -along.perp() } }
+        })
     }
 
     /// Shoelace area: positive for counter-clockwise vertices.
@@ -241,6 +273,27 @@ mod tests {
         // A vertex touching a non-adjacent edge.
         let touch = poly(&[[0.0, 0.0], [4.0, 0.0], [4.0, 4.0], [2.0, 0.0], [0.0, 4.0]]);
         assert!(touch.first_self_intersection().is_some());
+    }
+
+    #[test]
+    fn walls_face_into_the_room_whichever_way_it_winds() {
+        let ccw = Polygon::rectangle(DVec2::ZERO, DVec2::new(2.0, 1.0));
+        let mut cw = ccw.clone();
+        cw.points.reverse();
+        for room in [ccw, cw] {
+            let walls: Vec<Wall> = room.walls().collect();
+            assert_eq!(walls.len(), 4);
+            for w in &walls {
+                // A metre along (or half way) and 10 cm in lies inside, 10 cm out lies outside.
+                let t = w.length.min(1.0) * 0.5;
+                assert!(room.contains(w.point(t, 0.1)), "{w:?}");
+                assert!(!room.contains(w.point(t, -0.1)), "{w:?}");
+                assert!((w.along.length() - 1.0).abs() < 1e-12 && w.along.dot(w.inward).abs() < 1e-12);
+            }
+            assert_eq!(walls.iter().map(|w| w.length).sum::<f64>(), 6.0);
+        }
+        let first = Polygon::rectangle(DVec2::ZERO, DVec2::new(2.0, 1.0)).walls().next().unwrap();
+        assert_eq!(first.point(1.5, 0.25), DVec2::new(1.5, 0.25));
     }
 
     #[test]
