@@ -5,7 +5,8 @@
 //! else all its scenes. Each `--pred` folder is one row. When the reference is a dataset with a
 //! `train` split, the text table ends with the CKL that real training layouts score at the rows'
 //! size (the floor a perfect generator would reach; `eval::ckl_floor`), and each row carries it as
-//! `ckl_floor` in `--json` and `--out`.
+//! `ckl_floor` in `--json` and `--out`; for rows as large as the test split, also the CKL of real
+//! layouts that keep each test scene's own contact pieces (`eval::contact_floor`, `ckl_contact_floor`).
 //! `--baseline NAME` adds each row's layout metrics relative to the row NAME (`layout_ratio`).
 
 use super::output::{print_json, print_text};
@@ -13,7 +14,7 @@ use super::{ExitStatus, GlobalArgs};
 use anyhow::Context;
 use clap::Args;
 use rayon::prelude::*;
-use shade_sim::eval::{CklFloor, EvalRow, PhysicsRates, category_frequencies, ckl_floor, evaluate};
+use shade_sim::eval::{CklFloor, EvalRow, PhysicsRates, category_frequencies, ckl_floor, contact_floor, evaluate};
 use shade_sim::scene::{Action, RoomType, Scene};
 use shade_sim::sim::{CheckConfig, ViolationKind, check_scene};
 use std::path::{Path, PathBuf};
@@ -120,9 +121,10 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
             r.layout_ratio = Some(r.layout_ratio_to(&base));
         }
     }
-    let floors = ckl_floors(&args.reference, &rows, room, &freq)?;
+    let (floors, contact) = ckl_floors(&args.reference, &reference, &rows, room, &freq)?;
     for r in &mut rows {
         r.ckl_floor = floors.iter().find(|f| f.layouts == r.scenes).copied();
+        r.ckl_contact_floor = contact.filter(|f| f.layouts == r.scenes);
     }
     if let Some(out) = &args.out {
         let mut text = serde_json::to_string_pretty(&rows)?;
@@ -140,6 +142,12 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
                 f.layouts, f.draws, f.mean, f.p10, f.p90
             ))?;
         }
+        if let Some(f) = contact {
+            print_text(&format!(
+                "CKL of the test scenes' own contact pieces, the rest drawn from the train split ({} draws): mean {:.4}, p10 {:.4}, p90 {:.4}\n",
+                f.draws, f.mean, f.p10, f.p90
+            ))?;
+        }
     }
     Ok(ExitStatus::Success)
 }
@@ -147,18 +155,26 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
 /// Draws of real layouts per floor.
 const FLOOR_DRAWS: usize = 200;
 
-/// The CKL floor for each distinct row size, from the `reference` dataset's train split (none for
-/// a plain folder or a dataset without test and train splits).
-fn ckl_floors(reference: &Path, rows: &[EvalRow], room: RoomType, freq: &[f64]) -> anyhow::Result<Vec<CklFloor>> {
+/// The CKL floor for each distinct row size, from the `reference` dataset's train split, and the
+/// contact floor of its `test` scenes when a row is as large as they are (none for a plain folder
+/// or a dataset without test and train splits).
+fn ckl_floors(
+    reference: &Path,
+    test: &[Scene],
+    rows: &[EvalRow],
+    room: RoomType,
+    freq: &[f64],
+) -> anyhow::Result<(Vec<CklFloor>, Option<CklFloor>)> {
     let train = reference.join("train");
     if !reference.join("test").is_dir() || !train.is_dir() {
-        return Ok(Vec::new());
+        return Ok((Vec::new(), None));
     }
     let pool = load_all(&train)?;
     let mut sizes: Vec<usize> = rows.iter().map(|r| r.scenes).collect();
     sizes.sort_unstable();
     sizes.dedup();
-    Ok(sizes.into_iter().filter_map(|n| ckl_floor(&pool, room, freq, n, FLOOR_DRAWS, 0)).collect())
+    let contact = sizes.contains(&test.len()).then(|| contact_floor(test, &pool, room, freq, FLOOR_DRAWS, 0)).flatten();
+    Ok((sizes.into_iter().filter_map(|n| ckl_floor(&pool, room, freq, n, FLOOR_DRAWS, 0)).collect(), contact))
 }
 
 fn table(rows: &[EvalRow]) -> String {

@@ -8,7 +8,7 @@ mod layout_metrics;
 mod penetration;
 mod table;
 
-pub use ckl_floor::{CklFloor, ckl_floor};
+pub use ckl_floor::{CklFloor, ckl_floor, contact_floor, contact_pieces};
 pub use contact::{contact_iou, scene_contact_iou};
 pub use layout_metrics::{LayoutCounts, category_frequencies, category_kl};
 pub use penetration::{FurnitureField, SURFACE_POINTS, human_penetration, scene_penetration};

@@ -52,6 +52,10 @@ pub struct EvalRow {
     /// has a pool of them (`eval` with a dataset as reference).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ckl_floor: Option<CklFloor>,
+    /// What a generator that got every test scene's contact pieces right and drew the rest like the
+    /// data scores on CKL (`eval::contact_floor`), for a row of the reference's own size.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ckl_contact_floor: Option<CklFloor>,
 }
 
 impl EvalRow {
@@ -95,6 +99,7 @@ pub fn evaluate(name: &str, scenes: &[Scene], room: RoomType, reference: &[f64])
         physics: None,
         layout_ratio: None,
         ckl_floor: None,
+        ckl_contact_floor: None,
     }
 }
 
@@ -115,6 +120,7 @@ mod tests {
             physics: None,
             layout_ratio: None,
             ckl_floor: None,
+            ckl_contact_floor: None,
         }
     }
 

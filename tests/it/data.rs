@@ -270,6 +270,11 @@ fn eval_command_prints_table_1_rows_and_calibration_improves_them() {
     assert_eq!((floor.layouts, floor.draws), (small[0].scenes, 200));
     assert!(floor.p10 <= floor.mean && floor.mean <= floor.p90 && floor.mean > 0.0, "{floor:?}");
     assert!(rows.iter().all(|r| r.ckl_floor.is_none()), "30 scenes is more than the train split holds");
+    // So does the contact floor, for a row as large as the test split only.
+    let contact = small[0].ckl_contact_floor.expect("a row of the test split's size");
+    assert_eq!((contact.layouts, contact.draws), (small[0].scenes, 200));
+    assert!(contact.p10 <= contact.mean && contact.mean <= contact.p90, "{contact:?}");
+    assert!(rows.iter().all(|r| r.ckl_contact_floor.is_none()), "30 scenes is not the test split's size");
     let o = shade_sim(&[
         "eval",
         "--no-physics",
