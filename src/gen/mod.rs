@@ -22,6 +22,7 @@ pub mod inference;
 mod inside;
 mod model;
 mod occupancy;
+mod off_bodies;
 mod overlaps;
 mod params;
 pub mod phys_guidance;

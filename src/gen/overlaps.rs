@@ -17,9 +17,9 @@ use crate::scene::{Object, Scene};
 use glam::DVec2;
 
 /// Largest narrowing of a piece (m).
-const MAX_NARROWING: f64 = 0.1;
+pub(super) const MAX_NARROWING: f64 = 0.1;
 /// Largest narrowing as a share of the piece's size along that axis.
-const MAX_NARROWING_SHARE: f64 = 0.25;
+pub(super) const MAX_NARROWING_SHARE: f64 = 0.25;
 
 /// What resolving overlaps changed.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]

@@ -32,9 +32,10 @@
 //! the front, an L-shaped sofa or chaise too deep for any real one becoming a multi-seat sofa
 //! (`deep_seats`). A piece still
 //! poking out of the floor plan is then moved back over its people and inside or narrowed by at
-//! most 10 cm, a piece holding nobody is narrowed off the walkers' feet where 10 cm do it, and
-//! overlaps that survive are narrowed away or lose their smaller piece (`overlaps`; never a piece
-//! that holds a person).
+//! most 10 cm, a piece holding nobody is narrowed off the walkers' feet where 10 cm do it, one
+//! that people's bones still enter (a diner's thighs under a table top) is pushed or narrowed out
+//! of them (`off_bodies`), and overlaps that survive are narrowed away or lose their smaller piece
+//! (`overlaps`; never a piece that holds a person).
 //!
 //! It re-categorises nothing but a double bed in people's way, which may become a single bed, and
 //! a sofa too deep for its sitters, which may become a multi-seat sofa, and adds only within the
@@ -46,6 +47,7 @@ use super::completion::{SeatGaps, height_for_surface, support_for};
 use super::deep_seats::trim_deep_seats;
 use super::inside::{CLEARANCE, fits_inside, inside_push, worst_offence};
 use super::occupancy::Occupancy;
+use super::off_bodies::push_off_bodies;
 use super::overlaps::{narrow_by, resolve_overlaps};
 use super::relocate::{is_solid, relocate_off_paths};
 use super::walls::{stands_against_wall, to_wall_behind, wall_poses};
@@ -85,6 +87,8 @@ pub struct PolishReport {
     pub walled: usize,
     /// Pieces holding nobody moved out of people's way to a free spot (`relocate`).
     pub relocated: usize,
+    /// Pieces holding nobody moved or narrowed out of the bodies that entered them (`off_bodies`).
+    pub pushed: usize,
     /// Double beds in people's way swapped for a single bed.
     pub swapped: usize,
     /// Deep seats trimmed at the front until their sitters' knees pass it (`deep_seats`).
@@ -135,6 +139,7 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
     report.trimmed = trim_deep_seats(scene, &people);
     report.narrowed += fit_into_room(scene, &people);
     report.narrowed += narrow_off_paths(scene, &people.cond, &holds);
+    report.pushed = push_off_bodies(scene, &people.clearance, &holds);
     let overlaps = resolve_overlaps(scene, &holds);
     report.narrowed += overlaps.narrowed;
     report.removed = overlaps.removed;
