@@ -7,7 +7,7 @@
 //! nobody and that a bone enters deeper than the check's 2 cm moves horizontally away from those
 //! bones by the deepest depth plus 1 cm, where it stays inside the floor plan, clear of every other
 //! piece and no more in people's way, else loses that much on the side they enter (at most 10 cm
-//! and a quarter of its size: a table wedged between diners); up to four times, as a piece pushed
+//! and a quarter of its size in all: a table wedged between diners); up to four times, as a piece pushed
 //! off one person may meet another. Where that leaves the bodies no less deep in the pieces
 //! altogether, nothing changes.
 //!
@@ -20,7 +20,7 @@ use super::phys_guidance::PHYS_TOLERANCE;
 use super::polish::shift;
 use super::relocate::is_solid;
 use crate::geom::intersection_volume;
-use crate::scene::Scene;
+use crate::scene::{Object, Scene};
 use crate::sim::{EngineContact, Owner, exact_contacts};
 use glam::DVec2;
 
@@ -59,14 +59,14 @@ pub(super) fn push_off_bodies(scene: &mut Scene, clearance: &Clearance, holds: &
                 .enumerate()
                 .all(|(j, other)| j == i || intersection_volume(&b, &other.obox()) <= 1e-9);
             let solid = is_solid(o);
-            let in_the_way = |x: &crate::scene::Object| clearance.blocked(&x.obox(), solid).len();
+            let in_the_way = |x: &Object| clearance.blocked(&x.obox(), solid).len();
             if fits_inside(&b, &polygon) && apart && in_the_way(&candidate) <= in_the_way(o) {
                 scene.objects[i] = candidate;
             } else {
                 // Wedged in: the side the bones enter comes in instead (at most 10 cm and a
                 // quarter of the piece in all), which keeps it inside, apart and out of the way.
                 let mut cut = o.clone();
-                let within = |x: &crate::scene::Object| {
+                let within = |x: &Object| {
                     (0..2).all(|k| {
                         before[i].size[k] - x.size[k]
                             <= MAX_NARROWING.min(MAX_NARROWING_SHARE * before[i].size[k]) + 1e-9
@@ -129,7 +129,7 @@ mod tests {
     use crate::data::generate_room;
     use crate::geom::RoomWindow;
     use crate::human::{Body, Motion, stand};
-    use crate::scene::{Action, Category, Object, RoomType};
+    use crate::scene::{Action, Category, RoomType};
 
     /// A room from y = `south` to 3 m, 4 m wide, with a person standing at (2, 1.5) and a cabinet
     /// south of them, its north face as far into them as makes the deepest bone 5–6 cm deep.
