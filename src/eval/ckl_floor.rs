@@ -9,7 +9,7 @@
 //! test scene keeps its own contact pieces (the piece that covers most of each sit, lie or touch
 //! box), and only the rest is drawn from the pool.
 
-use super::{category_frequencies, category_kl, contact_iou};
+use super::{category_frequencies, category_kl, contact_iou, frequencies_of};
 use crate::data::Rng;
 use crate::human::Conditions;
 use crate::scene::{Category, RoomType, Scene};
@@ -101,20 +101,10 @@ pub fn contact_floor(
             for _ in inputs {
                 drawn.extend(&rest[rng.range(0, pool.len() - 1)]);
             }
-            category_kl(reference, &frequencies(&drawn, room))
+            category_kl(reference, &frequencies_of(drawn.into_iter(), room))
         })
         .collect();
     Some(CklFloor::of(inputs.len(), kls))
-}
-
-/// Category frequencies of a list of categories in the room type's one-hot order.
-fn frequencies(categories: &[Category], room: RoomType) -> Vec<f64> {
-    let mut counts = vec![0.0; room.categories().len()];
-    for c in categories.iter().filter_map(|&c| room.category_index(c)) {
-        counts[c] += 1.0;
-    }
-    let total: f64 = counts.iter().sum();
-    counts.iter().map(|c| if total > 0.0 { c / total } else { 0.0 }).collect()
 }
 
 impl CklFloor {

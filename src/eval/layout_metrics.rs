@@ -91,14 +91,18 @@ pub fn category_kl(p: &[f64], q: &[f64]) -> f64 {
 
 /// Category frequencies of a set of scenes in the room type's one-hot order.
 pub fn category_frequencies<'a>(scenes: impl Iterator<Item = &'a Scene>, room: crate::scene::RoomType) -> Vec<f64> {
-    let cats = room.categories();
-    let mut counts = vec![0usize; cats.len()];
-    for s in scenes {
-        for o in &s.objects {
-            if let Some(i) = room.category_index(o.category) {
-                counts[i] += 1;
-            }
-        }
+    frequencies_of(scenes.flat_map(|s| s.objects.iter().map(|o| o.category)), room)
+}
+
+/// Frequencies of a list of categories in the room type's one-hot order (categories of other room
+/// types left out).
+pub fn frequencies_of(
+    categories: impl Iterator<Item = crate::scene::Category>,
+    room: crate::scene::RoomType,
+) -> Vec<f64> {
+    let mut counts = vec![0usize; room.categories().len()];
+    for i in categories.filter_map(|c| room.category_index(c)) {
+        counts[i] += 1;
     }
     let total: usize = counts.iter().sum();
     counts.iter().map(|&c| ratio(c, total)).collect()

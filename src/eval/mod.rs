@@ -10,6 +10,6 @@ mod table;
 
 pub use ckl_floor::{CklFloor, ckl_floor, contact_floor, contact_pieces};
 pub use contact::{contact_iou, scene_contact_iou};
-pub use layout_metrics::{LayoutCounts, category_frequencies, category_kl};
+pub use layout_metrics::{LayoutCounts, category_frequencies, category_kl, frequencies_of};
 pub use penetration::{FurnitureField, SURFACE_POINTS, human_penetration, scene_penetration};
 pub use table::{EvalRow, PhysicsRates, evaluate};

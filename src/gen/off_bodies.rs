@@ -15,7 +15,7 @@
 
 use super::clearance::Clearance;
 use super::inside::fits_inside;
-use super::overlaps::{MAX_NARROWING, MAX_NARROWING_SHARE, narrow_by};
+use super::overlaps::{narrow_by, narrowed_within};
 use super::phys_guidance::PHYS_TOLERANCE;
 use super::polish::shift;
 use super::relocate::is_solid;
@@ -66,13 +66,7 @@ pub(super) fn push_off_bodies(scene: &mut Scene, clearance: &Clearance, holds: &
                 // Wedged in: the side the bones enter comes in instead (at most 10 cm and a
                 // quarter of the piece in all), which keeps it inside, apart and out of the way.
                 let mut cut = o.clone();
-                let within = |x: &Object| {
-                    (0..2).all(|k| {
-                        before[i].size[k] - x.size[k]
-                            <= MAX_NARROWING.min(MAX_NARROWING_SHARE * before[i].size[k]) + 1e-9
-                    })
-                };
-                if !narrow_by(&mut cut, push) || !within(&cut) {
+                if !narrow_by(&mut cut, push) || !narrowed_within(&before[i], &cut) {
                     continue;
                 }
                 scene.objects[i] = cut;

@@ -17,9 +17,9 @@ use crate::scene::{Object, Scene};
 use glam::DVec2;
 
 /// Largest narrowing of a piece (m).
-pub(super) const MAX_NARROWING: f64 = 0.1;
+const MAX_NARROWING: f64 = 0.1;
 /// Largest narrowing as a share of the piece's size along that axis.
-pub(super) const MAX_NARROWING_SHARE: f64 = 0.25;
+const MAX_NARROWING_SHARE: f64 = 0.25;
 
 /// What resolving overlaps changed.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -80,13 +80,23 @@ fn narrow_apart(scene: &mut Scene, i: usize, j: usize) -> bool {
     along_own && narrow_by(&mut scene.objects[small], m) && !overlap(scene, small, other)
 }
 
+/// The most a piece `size` long along an axis may be cut along it (m): 10 cm and a quarter of it.
+fn max_cut(size: f64) -> f64 {
+    MAX_NARROWING.min(MAX_NARROWING_SHARE * size)
+}
+
+/// Whether `after` is narrower than `before` in width and depth by no more than one cut may take.
+pub(super) fn narrowed_within(before: &Object, after: &Object) -> bool {
+    (0..2).all(|k| before.size[k] - after.size[k] <= max_cut(before.size[k]) + 1e-9)
+}
+
 /// Cuts `o` so that the side it would move away from by `m` (world) comes in by `m`, its other
 /// side staying put, if each cut along its own axes is at most 10 cm and a quarter of its size
 /// there. Returns whether it cut.
 pub(super) fn narrow_by(o: &mut Object, m: DVec2) -> bool {
     let (ax, ay) = o.obox().axes();
     let cuts = [ax.dot(m), ay.dot(m)];
-    if cuts.iter().zip(o.size).any(|(c, size)| c.abs() > MAX_NARROWING || c.abs() > MAX_NARROWING_SHARE * size) {
+    if cuts.iter().zip(o.size).any(|(c, size)| c.abs() > max_cut(size)) {
         return false;
     }
     for (k, c) in cuts.into_iter().enumerate() {
