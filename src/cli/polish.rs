@@ -53,12 +53,13 @@ pub fn run(args: &PolishArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus>
         let largest = reports.iter().map(|r| r.report.max_move).fold(0.0, f64::max);
         print_text(&format!(
             "{} scenes polished into {}: {moved} changed, largest move {largest:.3} m; objects: {} resized, {} added, \
-             {} trimmed, {} narrowed, {} removed\n",
+             {} trimmed, {} widened, {} narrowed, {} removed\n",
             reports.len(),
             args.out.display(),
             reports.iter().map(|r| r.report.resized).sum::<usize>(),
             reports.iter().map(|r| r.report.added).sum::<usize>(),
             reports.iter().map(|r| r.report.trimmed).sum::<usize>(),
+            reports.iter().map(|r| r.report.widened).sum::<usize>(),
             reports.iter().map(|r| r.report.narrowed).sum::<usize>(),
             reports.iter().map(|r| r.report.removed).sum::<usize>()
         ))?;

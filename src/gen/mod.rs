@@ -14,6 +14,7 @@ mod completion;
 mod config;
 mod dataset;
 mod deep_seats;
+mod wide_seats;
 mod error;
 mod features;
 mod generate;

@@ -30,7 +30,8 @@
 //! way, else a single bed where that clears some of it (`bed_swap`); a chair or
 //! sofa too deep for its sitters' knees to pass its front edge (one against a wall) loses depth at
 //! the front, an L-shaped sofa or chaise too deep for any real one becoming a multi-seat sofa
-//! (`deep_seats`). A piece still
+//! (`deep_seats`), and a sofa whose people still overhang its seat at an end grows there until
+//! the seat spans them, within its category's widest real piece (`wide_seats`). A piece still
 //! poking out of the floor plan is then moved back over its people and inside or narrowed by at
 //! most 10 cm, a piece holding nobody is narrowed off the walkers' feet where 10 cm do it, one
 //! that people's bones still enter (a diner's thighs under a table top) is pushed or narrowed out
@@ -50,6 +51,7 @@ use super::occupancy::Occupancy;
 use super::off_bodies::push_off_bodies;
 use super::overlaps::{narrow_by, resolve_overlaps};
 use super::relocate::{is_solid, relocate_off_paths};
+use super::wide_seats::widen_for_people;
 use super::walls::{stands_against_wall, to_wall_behind, wall_poses};
 use crate::eval::contact_iou;
 use crate::furniture::{height_range, template};
@@ -93,6 +95,8 @@ pub struct PolishReport {
     pub swapped: usize,
     /// Deep seats trimmed at the front until their sitters' knees pass it (`deep_seats`).
     pub trimmed: usize,
+    /// Sofas widened until their seat spans their sitters and sleepers (`wide_seats`).
+    pub widened: usize,
     /// Objects narrowed to fit the floor plan, off the walkers' feet or out of an overlap (`overlaps`).
     pub narrowed: usize,
     /// Objects removed from an overlap nothing else undid (`overlaps`).
@@ -137,6 +141,7 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
     report.relocated = relocate_off_paths(scene, &people.clearance, &holds);
     report.swapped = single_beds_off_paths(scene, &people);
     report.trimmed = trim_deep_seats(scene, &people);
+    report.widened = widen_for_people(scene, &people);
     report.narrowed += fit_into_room(scene, &people);
     report.narrowed += narrow_off_paths(scene, &people.cond, &holds);
     report.pushed = push_off_bodies(scene, &people.clearance, &holds);

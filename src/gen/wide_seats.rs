@@ -1,0 +1,179 @@
+//! Sofas widened to their people. Polishing keeps each sitter's or sleeper's support box on a
+//! sofa's seat by moving the sofa, but a sofa with people at both ends, or one that cannot slide
+//! along its wall (a side wall, a corner, a neighbour), leaves a box over an arm: the sitter's
+//! hip and elbow or the sleeper's head and feet end up inside it. Such a sofa grows on the side
+//! (or sides) where its people overhang the seat until the seat between the arms spans them all,
+//! the other side staying where it is, up to the widest real piece of its category, where the
+//! grown sofa stays inside the floor plan and is no more in walking or standing people's way.
+//! It keeps clear of the pieces that hold people; the other pieces it now overlaps are left to
+//! `overlaps`, which narrows or removes them.
+
+use super::occupancy::Occupancy;
+use super::polish::{local_extent, shift};
+use super::inside::fits_inside;
+use super::relocate::is_solid;
+use crate::furniture::{size_range, template};
+use crate::geom::intersection_volume;
+use crate::scene::{Action, Group, Object, Scene};
+
+/// How far inside the seat's ends the people's boxes end up (m).
+const MARGIN: f64 = 0.01;
+
+/// Widens every sofa whose sitters' or sleepers' boxes overhang its seat at an end (within the
+/// category's widest real piece, inside the floor plan, no more in people's way and no further into
+/// the pieces that hold people). Returns how many it widened.
+pub(super) fn widen_for_people(scene: &mut Scene, people: &Occupancy) -> usize {
+    let polygon = scene.floor_plan.polygon();
+    let mut widened = 0;
+    for i in 0..scene.objects.len() {
+        let o = &scene.objects[i];
+        if o.category.group() != Group::Sofa {
+            continue;
+        }
+        let held = people.held_by(i);
+        let boxes: Vec<_> = held.iter().filter(|(c, _)| matches!(c.action, Action::Sit | Action::Lie)).collect();
+        if boxes.is_empty() {
+            continue;
+        }
+        let mut grown = o.clone();
+        for _ in 0..4 {
+            let Some(surface) = template(&grown).surface else { break };
+            let b = grown.obox();
+            let (lo, hi) = boxes.iter().map(|(c, _)| local_extent(&c.obox, &b)).fold(
+                (f64::INFINITY, f64::NEG_INFINITY),
+                |(lo, hi), (l, h)| (lo.min(l.x), hi.max(h.x)),
+            );
+            let low = (surface.min.x + MARGIN - lo).max(0.0);
+            let high = (hi - surface.max.x + MARGIN).max(0.0);
+            if low + high <= 1e-3 {
+                break;
+            }
+            grow_sides(&mut grown, low, high);
+        }
+        let widest = size_range(grown.category, 0).1;
+        let solid = is_solid(o);
+        let in_the_way = |x: &Object| people.clearance.blocked(&x.obox(), solid).len();
+        // Pieces that hold people stay where they are, so the grown sofa must keep clear of them.
+        let holders_overlapped = |x: &Object| -> f64 {
+            let b = x.obox();
+            (0..scene.objects.len())
+                .filter(|&j| j != i && people.holds(j))
+                .map(|j| intersection_volume(&b, &scene.objects[j].obox()))
+                .sum()
+        };
+        if grown.size[0] - o.size[0] > 1e-3
+            && grown.size[0] <= widest + 1e-9
+            && fits_inside(&grown.obox(), &polygon)
+            && in_the_way(&grown) <= in_the_way(o)
+            && holders_overlapped(&grown) <= holders_overlapped(o) + 1e-9
+        {
+            scene.objects[i] = grown;
+            widened += 1;
+        }
+    }
+    widened
+}
+
+/// Makes `o` `low` wider at its local −x end and `high` wider at its +x end, the rest where it was.
+fn grow_sides(o: &mut Object, low: f64, high: f64) {
+    let (ax, _) = o.obox().axes();
+    o.size[0] += low + high;
+    shift(o, ax * ((high - low) * 0.5));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::data::generate_room;
+    use crate::geom::OBox;
+    use crate::human::{Body, Motion, sit};
+    use crate::scene::{Category, RoomType};
+    use glam::DVec2;
+
+    /// A 6 × 5 m living room (x from `west`) with a 1.9 m multi-seat sofa 1 cm off the south wall,
+    /// centred at x = 2, facing north, and sitters at the given x on it; every sitter held by it.
+    fn sofa_with_sitters(west: f64, xs: &[f64]) -> (Scene, Occupancy) {
+        let mut scene = generate_room(RoomType::Living, 3, 0, false).scene;
+        scene.floor_plan.polygon = vec![[west, 0.0], [6.0, 0.0], [6.0, 5.0], [west, 5.0]];
+        let sofa = Object {
+            id: "o0".into(),
+            category: Category::MultiSeatSofa,
+            center: [2.0, 0.46, 0.425],
+            size: [1.9, 0.9, 0.85],
+            yaw: 0.0,
+        };
+        let seat = template(&sofa).surface.expect("a sofa has a seat");
+        let body = Body::default();
+        scene.humans = xs
+            .iter()
+            .enumerate()
+            .map(|(k, &x)| {
+                let mut m = Motion::new(body, 30.0);
+                m.hold(sit(&body, DVec2::new(x, 0.5), seat.height, 0.0), 3, Action::Sit);
+                m.into_human(&format!("h{k}"))
+            })
+            .collect();
+        scene.objects = vec![sofa];
+        let mut people = Occupancy::of(&scene);
+        people.holders = (0..people.cond.contact_boxes.len())
+            .filter(|&b| people.cond.contact_boxes[b].action == Action::Sit)
+            .map(|b| (b, 0))
+            .collect();
+        assert_eq!(people.holders.len(), xs.len());
+        (scene, people)
+    }
+
+    /// The seat's ends (world x) of an unturned sofa.
+    fn seat_ends(o: &Object) -> (f64, f64) {
+        let s = template(o).surface.expect("a sofa has a seat");
+        (o.center[0] + s.min.x, o.center[0] + s.max.x)
+    }
+
+    /// The sitters' boxes' ends (world x).
+    fn boxes_ends(people: &Occupancy) -> (f64, f64) {
+        let boxes: Vec<&OBox> = people.holders.iter().map(|(b, _)| &people.cond.contact_boxes[*b].obox).collect();
+        let lo = boxes.iter().map(|b| b.center.x - b.size.x * 0.5).fold(f64::INFINITY, f64::min);
+        let hi = boxes.iter().map(|b| b.center.x + b.size.x * 0.5).fold(f64::NEG_INFINITY, f64::max);
+        (lo, hi)
+    }
+
+    #[test]
+    fn a_sofa_with_sitters_over_both_arms_grows_at_both_ends_to_span_them() {
+        let (mut scene, people) = sofa_with_sitters(0.0, &[1.2, 2.8]);
+        let (lo, hi) = boxes_ends(&people);
+        let (start, end) = seat_ends(&scene.objects[0]);
+        assert!(start > lo + 0.1 && end < hi - 0.1, "both sitters overhang the seat: {lo} {start} {end} {hi}");
+        assert_eq!(widen_for_people(&mut scene, &people), 1);
+        let o = &scene.objects[0];
+        let (start, end) = seat_ends(o);
+        assert!(start <= lo + 1e-6 && end >= hi - 1e-6, "the seat spans both: {lo} {start} {end} {hi}");
+        // No wider than that (the margin each side), the middle where it was, nothing else changed.
+        assert!(start >= lo - MARGIN - 0.01 && end <= hi + MARGIN + 0.01, "{lo} {start} {end} {hi}");
+        assert!((o.center[0] - 2.0).abs() < 0.01 && o.center[1] == 0.46 && o.size[1] == 0.9 && o.yaw == 0.0);
+        assert!(o.size[0] <= size_range(Category::MultiSeatSofa, 0).1);
+    }
+
+    #[test]
+    fn a_sofa_grows_only_on_the_side_its_sitter_overhangs() {
+        let (mut scene, people) = sofa_with_sitters(0.0, &[2.8]);
+        let west_end = scene.objects[0].center[0] - scene.objects[0].size[0] * 0.5;
+        assert_eq!(widen_for_people(&mut scene, &people), 1);
+        let o = &scene.objects[0];
+        assert!((o.center[0] - o.size[0] * 0.5 - west_end).abs() < 1e-9, "the west end stays");
+        assert!(seat_ends(o).1 >= boxes_ends(&people).1 - 1e-6);
+    }
+
+    #[test]
+    fn a_sofa_that_would_leave_the_room_or_outgrow_its_category_stays_as_it_is() {
+        // The west wall 3 cm beyond the sofa's west end: growing west would cross it.
+        let (mut scene, people) = sofa_with_sitters(1.03, &[1.2]);
+        let before = scene.objects.clone();
+        assert_eq!(widen_for_people(&mut scene, &people), 0);
+        assert_eq!(scene.objects, before);
+        // Sitters 3 m apart need a seat wider than any real multi-seat sofa.
+        let (mut scene, people) = sofa_with_sitters(0.0, &[0.5, 3.5]);
+        let before = scene.objects.clone();
+        assert_eq!(widen_for_people(&mut scene, &people), 0);
+        assert_eq!(scene.objects, before);
+    }
+}
