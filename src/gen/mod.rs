@@ -14,7 +14,6 @@ mod completion;
 mod config;
 mod dataset;
 mod deep_seats;
-mod wide_seats;
 mod error;
 mod features;
 mod generate;
@@ -35,6 +34,7 @@ mod shipped;
 pub mod tokens;
 pub mod train;
 mod walls;
+mod wide_seats;
 
 pub use adamw::{AdamW, AdamWConfig};
 pub use checkpoint::{Checkpoint, CheckpointMeta, TrainingInfo};

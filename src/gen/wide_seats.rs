@@ -3,14 +3,14 @@
 //! along its wall (a side wall, a corner, a neighbour), leaves a box over an arm: the sitter's
 //! hip and elbow or the sleeper's head and feet end up inside it. Such a sofa grows on the side
 //! (or sides) where its people overhang the seat until the seat between the arms spans them all,
-//! the other side staying where it is, up to the widest real piece of its category, where the
-//! grown sofa stays inside the floor plan and is no more in walking or standing people's way.
-//! It keeps clear of the pieces that hold people; the other pieces it now overlaps are left to
-//! `overlaps`, which narrows or removes them.
+//! the other side staying where it is — or as far towards that as the widest real piece of its
+//! category goes, each end its share — where the grown sofa stays inside the floor plan, is no
+//! more in walking or standing people's way and no further into the pieces that hold people.
+//! The other pieces it now overlaps are left to `overlaps`, which narrows or removes them.
 
+use super::inside::fits_inside;
 use super::occupancy::Occupancy;
 use super::polish::{local_extent, shift};
-use super::inside::fits_inside;
 use super::relocate::is_solid;
 use crate::furniture::{size_range, template};
 use crate::geom::intersection_volume;
@@ -19,7 +19,7 @@ use crate::scene::{Action, Group, Object, Scene};
 /// How far inside the seat's ends the people's boxes end up (m).
 const MARGIN: f64 = 0.01;
 
-/// Widens every sofa whose sitters' or sleepers' boxes overhang its seat at an end (within the
+/// Widens every sofa whose sitters' or sleepers' boxes overhang its seat at an end (up to the
 /// category's widest real piece, inside the floor plan, no more in people's way and no further into
 /// the pieces that hold people). Returns how many it widened.
 pub(super) fn widen_for_people(scene: &mut Scene, people: &Occupancy) -> usize {
@@ -36,21 +36,30 @@ pub(super) fn widen_for_people(scene: &mut Scene, people: &Occupancy) -> usize {
             continue;
         }
         let mut grown = o.clone();
+        let (mut grown_low, mut grown_high) = (0.0, 0.0);
         for _ in 0..4 {
             let Some(surface) = template(&grown).surface else { break };
             let b = grown.obox();
-            let (lo, hi) = boxes.iter().map(|(c, _)| local_extent(&c.obox, &b)).fold(
-                (f64::INFINITY, f64::NEG_INFINITY),
-                |(lo, hi), (l, h)| (lo.min(l.x), hi.max(h.x)),
-            );
+            let (lo, hi) = boxes
+                .iter()
+                .map(|(c, _)| local_extent(&c.obox, &b))
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (l, h)| (lo.min(l.x), hi.max(h.x)));
             let low = (surface.min.x + MARGIN - lo).max(0.0);
             let high = (hi - surface.max.x + MARGIN).max(0.0);
             if low + high <= 1e-3 {
                 break;
             }
             grow_sides(&mut grown, low, high);
+            grown_low += low;
+            grown_high += high;
         }
         let widest = size_range(grown.category, 0).1;
+        if grown.size[0] > widest {
+            // As far as the widest real piece goes, each end its share.
+            let k = ((widest - o.size[0]) / (grown_low + grown_high)).max(0.0);
+            grown = o.clone();
+            grow_sides(&mut grown, grown_low * k, grown_high * k);
+        }
         let solid = is_solid(o);
         let in_the_way = |x: &Object| people.clearance.blocked(&x.obox(), solid).len();
         // Pieces that hold people stay where they are, so the grown sofa must keep clear of them.
@@ -62,7 +71,6 @@ pub(super) fn widen_for_people(scene: &mut Scene, people: &Occupancy) -> usize {
                 .sum()
         };
         if grown.size[0] - o.size[0] > 1e-3
-            && grown.size[0] <= widest + 1e-9
             && fits_inside(&grown.obox(), &polygon)
             && in_the_way(&grown) <= in_the_way(o)
             && holders_overlapped(&grown) <= holders_overlapped(o) + 1e-9
@@ -164,16 +172,23 @@ mod tests {
     }
 
     #[test]
-    fn a_sofa_that_would_leave_the_room_or_outgrow_its_category_stays_as_it_is() {
+    fn a_sofa_that_would_leave_the_room_stays_as_it_is() {
         // The west wall 3 cm beyond the sofa's west end: growing west would cross it.
         let (mut scene, people) = sofa_with_sitters(1.03, &[1.2]);
         let before = scene.objects.clone();
         assert_eq!(widen_for_people(&mut scene, &people), 0);
         assert_eq!(scene.objects, before);
-        // Sitters 3 m apart need a seat wider than any real multi-seat sofa.
+    }
+
+    #[test]
+    fn a_sofa_grows_no_wider_than_the_widest_real_one() {
+        // Sitters 3 m apart need a seat wider than any real multi-seat sofa (2.79 m): it grows
+        // to that, by the same at both ends (they overhang alike).
         let (mut scene, people) = sofa_with_sitters(0.0, &[0.5, 3.5]);
-        let before = scene.objects.clone();
-        assert_eq!(widen_for_people(&mut scene, &people), 0);
-        assert_eq!(scene.objects, before);
+        let widest = size_range(Category::MultiSeatSofa, 0).1;
+        assert!(widest < 3.2, "{widest}");
+        assert_eq!(widen_for_people(&mut scene, &people), 1);
+        let o = &scene.objects[0];
+        assert!((o.size[0] - widest).abs() < 1e-9 && (o.center[0] - 2.0).abs() < 1e-9, "{:?}", o);
     }
 }
