@@ -242,6 +242,21 @@ pub(super) fn height_for_surface(category: Category, size: [f64; 3], target: f64
     h
 }
 
+/// The height within `lo..=hi` at which the category's sitting or lying surface comes nearest
+/// `target`: [`height_for_surface`] clamped, or `target` itself clamped — a bed no taller than
+/// 0.7 m has no headboard and its mattress is its top, so a low bed can seat a person higher than
+/// a tall one of the same category — whichever comes nearer (the first on a tie).
+pub(super) fn height_within(category: Category, size: [f64; 3], target: f64, (lo, hi): (f64, f64)) -> f64 {
+    let miss = |h: f64| {
+        template_of(category, &boxed([size[0], size[1], h]))
+            .surface
+            .map_or(f64::INFINITY, |s| (s.height - target).abs())
+    };
+    let scaled = height_for_surface(category, size, target).clamp(lo, hi);
+    let direct = target.clamp(lo, hi);
+    if miss(direct) < miss(scaled) - 1e-9 { direct } else { scaled }
+}
+
 /// A box of `size` standing at the origin, unturned.
 fn boxed(size: [f64; 3]) -> OBox {
     OBox::new(DVec3::new(0.0, 0.0, size[2] * 0.5), DVec3::from(size), 0.0)
@@ -281,6 +296,25 @@ mod tests {
         }
         assert_eq!(found.len(), 3, "{room} {action:?}");
         found
+    }
+
+    #[test]
+    fn a_low_bed_without_a_headboard_seats_a_person_higher_than_a_tall_one_can() {
+        // Real single beds are 0.70–0.87 m tall, so 0.55–1.02 m within 15 cm. A tall bed's mattress
+        // is at half its height: 0.51 m at most; a bed up to 0.7 m has no headboard, its top at 0.63.
+        let range = (0.70 - 0.15, 0.874 + 0.15);
+        let size = [0.95, 2.0, 0.87];
+        let h = height_within(Category::SingleBed, size, 0.63, range);
+        assert!((h - 0.63).abs() < 1e-9, "{h}");
+        assert!((height_for_surface(Category::SingleBed, size, 0.63).clamp(range.0, range.1) - 1.024).abs() < 1e-9);
+        // A mattress at 0.45 m: the tall bed (0.9 m) gets it exactly, the low one could not (0.55).
+        let h = height_within(Category::SingleBed, size, 0.45, range);
+        assert!((h - 0.9).abs() < 1e-6, "{h}");
+        // A chair's seat is not its top: scaled as before.
+        let chair = [0.45, 0.5, 0.9];
+        let (lo, hi) = (0.6, 1.2);
+        let h = height_within(Category::DiningChair, chair, 0.47, (lo, hi));
+        assert_eq!(h, height_for_surface(Category::DiningChair, chair, 0.47).clamp(lo, hi));
     }
 
     #[test]

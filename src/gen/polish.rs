@@ -13,7 +13,9 @@
 //! shelves, sofas, desks, dressing and console tables) is put back against the nearest wall behind
 //! or in front of it, its back to it (`walls`; a piece holding people only backwards, within what
 //! its people allow). A seat's or bed's surface goes to the top of its person's support
-//! volume (within the heights of the category's real pieces, give or take 15 cm), other holders
+//! volume (within the heights of the category's real pieces, give or take 15 cm; a bed up to
+//! 0.7 m tall has no headboard and its mattress is its top, so a high sitter gets a low bed where
+//! a tall one cannot reach them), other holders
 //! grow to the top of their box (at most 15 cm), and width and depth grow by at most 20 cm where
 //! the box needs it. Every round then (1) moves each holder by the smallest shift that puts its
 //! boxes' footprints on the part they must be on (a seat's surface clear of its backrest and near
@@ -44,7 +46,7 @@
 
 use super::bed_swap::single_beds_off_paths;
 use super::clearance::Clearance;
-use super::completion::{SeatGaps, height_for_surface, support_for};
+use super::completion::{SeatGaps, height_within, support_for};
 use super::deep_seats::trim_deep_seats;
 use super::inside::{CLEARANCE, fits_inside, inside_push, worst_offence};
 use super::occupancy::Occupancy;
@@ -490,7 +492,7 @@ fn fit_size(o: &mut Object, contact: &ContactBox, gaps: &SeatGaps) -> bool {
         // Any height real pieces of the category have, give or take MAX_GROW_HEIGHT.
         Some(_) => {
             let (lo, hi) = height_range(o.category);
-            Some(height_for_surface(o.category, o.size, top).clamp(lo - MAX_GROW_HEIGHT, hi + MAX_GROW_HEIGHT))
+            Some(height_within(o.category, o.size, top, (lo - MAX_GROW_HEIGHT, hi + MAX_GROW_HEIGHT)))
         }
         None => Some(o.size[2].max(top)).filter(|h| h - o.size[2] <= MAX_GROW_HEIGHT),
     };
@@ -918,7 +920,7 @@ mod tests {
         let right = surface(&scene.objects[bed]);
         // 25 cm too tall: more than the 15 cm a piece may grow or shrink, within real beds' heights.
         let o = &mut scene.objects[bed];
-        o.size[2] = height_for_surface(o.category, o.size, right + 0.25);
+        o.size[2] = super::super::completion::height_for_surface(o.category, o.size, right + 0.25);
         o.center[2] = o.size[2] * 0.5;
         polish_scene(&mut scene, 30);
         let now = surface(&scene.objects[bed]);
