@@ -118,7 +118,7 @@ mod tests {
             .map(|(k, &x)| {
                 let mut m = Motion::new(body, 30.0);
                 m.hold(sit(&body, DVec2::new(x, 0.5), seat.height, 0.0), 3, Action::Sit);
-                m.into_human(&format!("h{k}"))
+                m.into_human(format!("h{k}"))
             })
             .collect();
         scene.objects = vec![sofa];
