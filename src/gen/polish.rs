@@ -27,7 +27,8 @@
 //! plan (corners inside, and off an L-shaped room's inner corner). Holders move a fifth as much for
 //! overlaps and paths; the last third of the rounds leaves contacts alone and the last five paths,
 //! so the layout ends separated and inside. Rounds stop when nothing moves a millimetre. A box
-//! still less than half covered after that gets a new piece and a second pass of rounds. A double
+//! still less than half covered by pieces that can hold it (a table top over a sitter's seat does
+//! not count) after that gets a new piece and a second pass of rounds. A double
 //! bed still in people's way becomes the narrowest real double bed where that clears all of the
 //! way, else a single bed where that clears some of it (`bed_swap`); a chair or
 //! sofa too deep for its sitters' knees to pass its front edge (one against a wall) loses depth at
