@@ -32,8 +32,9 @@
 //! bed still in people's way becomes the narrowest real double bed where that clears all of the
 //! way, else a single bed where that clears some of it (`bed_swap`); a chair or
 //! sofa too deep for its sitters' knees to pass its front edge (one against a wall) loses depth at
-//! the front, an L-shaped sofa or chaise too deep for any real one becoming a multi-seat sofa
-//! (`deep_seats`), and a sofa whose people still overhang its seat at an end grows there until
+//! the front, an L-shaped sofa or chaise too deep for any real one becoming a multi-seat sofa, and
+//! a bed loses width on the side its sitter faces, down to the narrowest real one (`deep_seats`);
+//! a sofa whose people still overhang its seat at an end grows there until
 //! the seat spans them, within its category's widest real piece (`wide_seats`). A piece still
 //! poking out of the floor plan is then moved back over its people and inside or narrowed by at
 //! most 10 cm, a piece holding nobody is narrowed off the walkers' feet where 10 cm do it, one
@@ -48,7 +49,7 @@
 use super::bed_swap::single_beds_off_paths;
 use super::clearance::Clearance;
 use super::completion::{SeatGaps, height_within, support_for};
-use super::deep_seats::trim_deep_seats;
+use super::deep_seats::{trim_beds_to_sitters, trim_deep_seats};
 use super::inside::{CLEARANCE, fits_inside, inside_push, worst_offence};
 use super::occupancy::Occupancy;
 use super::off_bodies::push_off_bodies;
@@ -96,7 +97,8 @@ pub struct PolishReport {
     pub pushed: usize,
     /// Double beds in people's way swapped for a single bed.
     pub swapped: usize,
-    /// Deep seats trimmed at the front until their sitters' knees pass it (`deep_seats`).
+    /// Deep seats trimmed at the front, and beds on their sitters' side, until the sitters' knees
+    /// pass the edge (`deep_seats`).
     pub trimmed: usize,
     /// Sofas widened until their seat spans their sitters and sleepers (`wide_seats`).
     pub widened: usize,
@@ -150,6 +152,7 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
     report.relocated = relocate_off_paths(scene, &people.clearance, &holds);
     report.swapped = single_beds_off_paths(scene, &people);
     report.trimmed = trim_deep_seats(scene, &people);
+    report.trimmed += trim_beds_to_sitters(scene, &people);
     report.widened = widen_for_people(scene, &people);
     report.narrowed += fit_into_room(scene, &people);
     report.narrowed += narrow_off_paths(scene, &people.cond, &holds);
@@ -544,7 +547,7 @@ fn holding_region(o: &Object, contact: &ContactBox, gaps: &SeatGaps) -> (DVec2, 
 
 /// How far a bed sitter's support box may overhang the edge they sit on (m): the box reaches a
 /// third down the thighs, which the data seats 20 cm from the edge.
-const BED_EDGE_OVERHANG: f64 = 0.1;
+pub(super) const BED_EDGE_OVERHANG: f64 = 0.1;
 /// How far behind the edge the front of a bed sitter's support box may be (m).
 const BED_EDGE_BAND: f64 = 0.05;
 
