@@ -10,9 +10,8 @@
 //! moves.
 
 use super::occupancy::Occupancy;
-use super::polish::{BED_EDGE_OVERHANG, local_extent, shift};
+use super::polish::{BED_EDGE_OVERHANG, bed_edge_faced, local_extent, shift};
 use crate::furniture::{size_range, template};
-use crate::geom::facing;
 use crate::human::KNEE_OVERHANG;
 use crate::scene::{Action, Category, Group, Object, Scene};
 use glam::DVec2;
@@ -77,9 +76,8 @@ pub(super) fn trim_beds_to_sitters(scene: &mut Scene, people: &Occupancy) -> usi
         for (c, gaps) in &held {
             let (lo, hi) = local_extent(&c.obox, &b);
             // The side a sitter faces: their box may overhang its edge as polishing lets it.
-            let f = facing(c.obox.yaw - o.yaw);
-            let k = if f.x.abs() >= f.y.abs() { 0 } else { 1 };
-            let (s, sign) = if f[k] > 0.0 { (1, 1.0) } else { (0, -1.0) };
+            let (k, ahead) = bed_edge_faced(o, c);
+            let (s, sign) = if ahead { (1, 1.0) } else { (0, -1.0) };
             let sits = c.action == Action::Sit;
             for k2 in 0..2 {
                 let overhang = |s2: usize| if sits && (k2, s2) == (k, s) { BED_EDGE_OVERHANG } else { 0.0 };

@@ -554,11 +554,10 @@ const BED_EDGE_BAND: f64 = 0.05;
 /// Where a bed sitter's support box must be (local min, max corners): against the edge of the
 /// mattress they face, so that their lower legs hang outside the bed, not in it.
 fn bed_edge_region(o: &Object, contact: &ContactBox, (mut lo, mut hi): (DVec2, DVec2)) -> (DVec2, DVec2) {
-    let f = bed_local_facing(o, contact);
-    let k = if f.x.abs() >= f.y.abs() { 0 } else { 1 };
+    let (k, ahead) = bed_edge_faced(o, contact);
     let (box_lo, box_hi) = local_extent(&contact.obox, &o.obox());
     let reach = box_hi[k] - box_lo[k] + BED_EDGE_OVERHANG + BED_EDGE_BAND;
-    if f[k] > 0.0 {
+    if ahead {
         hi[k] += BED_EDGE_OVERHANG;
         lo[k] = lo[k].max(hi[k] - reach);
     } else {
@@ -566,6 +565,14 @@ fn bed_edge_region(o: &Object, contact: &ContactBox, (mut lo, mut hi): (DVec2, D
         hi[k] = hi[k].min(lo[k] + reach);
     }
     (lo, hi)
+}
+
+/// The edge of bed `o` that `contact`'s person faces: its local axis (0: x, 1: y) and whether it is
+/// the edge on that axis's positive side.
+pub(super) fn bed_edge_faced(o: &Object, contact: &ContactBox) -> (usize, bool) {
+    let f = bed_local_facing(o, contact);
+    let k = if f.x.abs() >= f.y.abs() { 0 } else { 1 };
+    (k, f[k] > 0.0)
 }
 
 /// The contact box's footprint corners in `o`'s frame: (min, max) per axis.
