@@ -185,13 +185,7 @@ mod tests {
         use crate::human::{Body, Motion, sit};
         let mut scene = generate_room(RoomType::Bedroom, 3, 0, false).scene;
         scene.floor_plan.polygon = vec![[1.09, 0.0], [6.0, 0.0], [6.0, 4.0], [1.09, 4.0]];
-        let bed = Object {
-            id: "o0".into(),
-            category: Category::DoubleBed,
-            center: [2.0, 1.5, 0.45],
-            size: [1.8, 2.1, 0.9],
-            yaw: 0.0,
-        };
+        let bed = Object::standing("o0", Category::DoubleBed, [2.0, 1.5], [1.8, 2.1, 0.9]);
         let top = template(&bed).surface.unwrap().height;
         let body = Body::default();
         let mut m = Motion::new(body, 30.0);

@@ -112,10 +112,6 @@ mod tests {
     use super::*;
     use crate::scene::{Category, Object, RoomType};
 
-    fn piece(id: &str, category: Category, center: [f64; 2], size: [f64; 3]) -> Object {
-        Object { id: id.into(), category, center: [center[0], center[1], size[2] * 0.5], size, yaw: 0.0 }
-    }
-
     fn scene(objects: Vec<Object>) -> Scene {
         let mut s = crate::data::generate_room(RoomType::Bedroom, 1, 0, false).scene;
         s.objects = objects;
@@ -126,8 +122,8 @@ mod tests {
     fn a_small_overlap_narrows_the_smaller_piece_on_its_near_side() {
         // A 0.5 m nightstand reaching 4 cm into a bed's side.
         let mut s = scene(vec![
-            piece("bed", Category::DoubleBed, [0.0, 0.0], [1.6, 2.0, 0.5]),
-            piece("n", Category::Nightstand, [1.01, 0.8], [0.5, 0.4, 0.5]),
+            Object::standing("bed", Category::DoubleBed, [0.0, 0.0], [1.6, 2.0, 0.5]),
+            Object::standing("n", Category::Nightstand, [1.01, 0.8], [0.5, 0.4, 0.5]),
         ]);
         let r = resolve_overlaps(&mut s, &[false, false]);
         assert_eq!(r, OverlapReport { narrowed: 1, removed: 0 });
@@ -135,16 +131,16 @@ mod tests {
         // Its far side stays at x = 1.26; its near side moves to 0.805 (4.5 cm cut).
         assert!((n.center[0] + n.size[0] * 0.5 - 1.26).abs() < 1e-12);
         assert!((n.center[0] - n.size[0] * 0.5 - 0.805).abs() < 1e-12, "{n:?}");
-        assert_eq!(s.objects[0], piece("bed", Category::DoubleBed, [0.0, 0.0], [1.6, 2.0, 0.5]));
+        assert_eq!(s.objects[0], Object::standing("bed", Category::DoubleBed, [0.0, 0.0], [1.6, 2.0, 0.5]));
     }
 
     #[test]
     fn a_duplicate_goes_unless_it_holds_someone() {
         let twins = || {
             scene(vec![
-                piece("a", Category::Nightstand, [0.0, 0.0], [0.5, 0.4, 0.5]),
-                piece("b", Category::Nightstand, [0.05, 0.02], [0.45, 0.4, 0.5]),
-                piece("far", Category::Wardrobe, [3.0, 3.0], [1.0, 0.6, 2.0]),
+                Object::standing("a", Category::Nightstand, [0.0, 0.0], [0.5, 0.4, 0.5]),
+                Object::standing("b", Category::Nightstand, [0.05, 0.02], [0.45, 0.4, 0.5]),
+                Object::standing("far", Category::Wardrobe, [3.0, 3.0], [1.0, 0.6, 2.0]),
             ])
         };
         let mut s = twins();

@@ -930,14 +930,7 @@ mod tests {
         // than 2 m) but cannot move over to them, and the table top covers their support box.
         let mut scene = generate_room(RoomType::Dining, 3, 0, false).scene;
         scene.floor_plan.polygon = vec![[0.0, 0.0], [5.0, 0.0], [5.0, 4.0], [0.0, 4.0]];
-        let piece = |id: &str, category, center: [f64; 2], size: [f64; 3]| Object {
-            id: id.into(),
-            category,
-            center: [center[0], center[1], size[2] * 0.5],
-            size,
-            yaw: 0.0,
-        };
-        let sofa = piece("o0", Category::MultiSeatSofa, [1.5, 0.46], [2.1, 0.9, 0.85]);
+        let sofa = Object::standing("o0", Category::MultiSeatSofa, [1.5, 0.46], [2.1, 0.9, 0.85]);
         let seat = template(&sofa).surface.unwrap().height;
         let body = Body::default();
         scene.humans = [(1.2, 0.55, seat), (1.8, 0.55, seat), (3.0, 1.3, 0.47)]
@@ -950,8 +943,12 @@ mod tests {
             })
             .collect();
         let third = Conditions::contact_boxes_of(&scene).into_iter().find(|b| b.human == "h2").unwrap();
-        let table =
-            piece("o1", Category::DiningTable, [third.obox.center.x, third.obox.center.y + 0.1], [1.4, 0.9, 0.75]);
+        let table = Object::standing(
+            "o1",
+            Category::DiningTable,
+            [third.obox.center.x, third.obox.center.y + 0.1],
+            [1.4, 0.9, 0.75],
+        );
         scene.objects = vec![sofa, table];
         assert!(contact_iou(&third.obox, &scene.objects) > 0.9, "the table covers the box");
         let r = polish_scene(&mut scene, 30);

@@ -103,13 +103,7 @@ mod tests {
     fn sofa_with_sitters(west: f64, xs: &[f64]) -> (Scene, Occupancy) {
         let mut scene = generate_room(RoomType::Living, 3, 0, false).scene;
         scene.floor_plan.polygon = vec![[west, 0.0], [6.0, 0.0], [6.0, 5.0], [west, 5.0]];
-        let sofa = Object {
-            id: "o0".into(),
-            category: Category::MultiSeatSofa,
-            center: [2.0, 0.46, 0.425],
-            size: [1.9, 0.9, 0.85],
-            yaw: 0.0,
-        };
+        let sofa = Object::standing("o0", Category::MultiSeatSofa, [2.0, 0.46], [1.9, 0.9, 0.85]);
         let seat = template(&sofa).surface.expect("a sofa has a seat");
         let body = Body::default();
         scene.humans = xs

@@ -24,6 +24,11 @@ pub struct Object {
 }
 
 impl Object {
+    /// A piece standing on the floor with its footprint centred at `xy`, unturned.
+    pub fn standing(id: impl Into<String>, category: Category, xy: [f64; 2], size: [f64; 3]) -> Object {
+        Object { id: id.into(), category, center: [xy[0], xy[1], size[2] * 0.5], size, yaw: 0.0 }
+    }
+
     /// Centre of the bounding box as a vector.
     pub fn center(&self) -> DVec3 {
         DVec3::from(self.center)
