@@ -53,7 +53,7 @@ pub fn run(args: &PolishArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus>
         let largest = reports.iter().map(|r| r.report.max_move).fold(0.0, f64::max);
         print_text(&format!(
             "{} scenes polished into {}: {moved} changed, largest move {largest:.3} m; objects: {} resized, {} added, \
-             {} trimmed, {} widened, {} narrowed, {} removed\n",
+             {} trimmed, {} widened, {} narrowed, {} left out, {} removed\n",
             reports.len(),
             args.out.display(),
             reports.iter().map(|r| r.report.resized).sum::<usize>(),
@@ -61,6 +61,7 @@ pub fn run(args: &PolishArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus>
             reports.iter().map(|r| r.report.trimmed).sum::<usize>(),
             reports.iter().map(|r| r.report.widened).sum::<usize>(),
             reports.iter().map(|r| r.report.narrowed).sum::<usize>(),
+            reports.iter().map(|r| r.report.left_out).sum::<usize>(),
             reports.iter().map(|r| r.report.removed).sum::<usize>()
         ))?;
     }

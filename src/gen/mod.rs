@@ -20,6 +20,7 @@ mod generate;
 pub mod guidance;
 pub mod inference;
 mod inside;
+mod left_out;
 mod model;
 mod occupancy;
 mod off_bodies;

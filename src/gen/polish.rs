@@ -51,6 +51,7 @@ use super::clearance::Clearance;
 use super::completion::{SeatGaps, height_within, support_for};
 use super::deep_seats::{trim_beds_to_sitters, trim_deep_seats};
 use super::inside::{CLEARANCE, fits_inside, inside_push, worst_offence};
+use super::left_out::leave_out_entered;
 use super::occupancy::Occupancy;
 use super::off_bodies::push_off_bodies;
 use super::overlaps::{narrow_by, resolve_overlaps};
@@ -104,6 +105,8 @@ pub struct PolishReport {
     pub widened: usize,
     /// Objects narrowed to fit the floor plan, off the walkers' feet or out of an overlap (`overlaps`).
     pub narrowed: usize,
+    /// Pieces holding nobody that people still passed through, left out (`left_out`).
+    pub left_out: usize,
     /// Objects removed from an overlap nothing else undid (`overlaps`).
     pub removed: usize,
     /// Largest total move of one object (m).
@@ -157,6 +160,8 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
     report.narrowed += fit_into_room(scene, &people);
     report.narrowed += narrow_off_paths(scene, &people.cond, &holds);
     report.pushed = push_off_bodies(scene, &people.clearance, &holds);
+    let mut holds = holds;
+    report.left_out = leave_out_entered(scene, &people.cond.contact_boxes, &mut holds);
     let overlaps = resolve_overlaps(scene, &holds);
     report.narrowed += overlaps.narrowed;
     report.removed = overlaps.removed;
