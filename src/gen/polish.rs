@@ -39,8 +39,9 @@
 //! poking out of the floor plan is then moved back over its people and inside or narrowed by at
 //! most 10 cm, a piece holding nobody is narrowed off the walkers' feet where 10 cm do it, one
 //! that people's bones still enter (a diner's thighs under a table top) is pushed or narrowed out
-//! of them (`off_bodies`), and overlaps that survive are narrowed away or lose their smaller piece
-//! (`overlaps`; never a piece that holds a person).
+//! of them (`off_bodies`), one they still enter is left out unless someone sits at it or it is the
+//! room's last bed, dining table or sofa (`left_out`), and overlaps that survive are narrowed away
+//! or lose their smaller piece (`overlaps`; never a piece that holds a person).
 //!
 //! It re-categorises nothing but a double bed in people's way, which may become a single bed, and
 //! a sofa too deep for its sitters, which may become a multi-seat sofa, and adds only within the
