@@ -17,11 +17,10 @@
 //!
 //! It moves nothing.
 
-use super::phys_guidance::PHYS_TOLERANCE;
 use crate::geom::facing;
 use crate::human::ContactBox;
 use crate::scene::{Action, Category, Group, Object, RoomType, Scene};
-use crate::sim::{Owner, exact_contacts};
+use crate::sim::{EngineContact, Owner};
 
 /// How far in front of a sitter's support box a piece they sit at may begin (m).
 const SITS_AT_REACH: f64 = 0.8;
@@ -29,11 +28,17 @@ const SITS_AT_REACH: f64 = 0.8;
 const SITS_AT_ABOVE: f64 = 0.15;
 
 /// Removes, from the last to the first, every standing piece that holds nobody (`holds[i]`
-/// false), that bones enter deeper than the check's tolerance and that none of the rules above
-/// keeps; `holds` loses the same entries. Returns how many it removed.
-pub(super) fn leave_out_entered(scene: &mut Scene, contacts: &[ContactBox], holds: &mut Vec<bool>) -> usize {
+/// false), that a bone of `bones` enters (the scene's exact contacts deeper than the check's
+/// tolerance) and that none of the rules above keeps; `holds` loses the same entries. Returns how
+/// many it removed.
+pub(super) fn leave_out_entered(
+    scene: &mut Scene,
+    bones: &[EngineContact],
+    contacts: &[ContactBox],
+    holds: &mut Vec<bool>,
+) -> usize {
     let mut entered = vec![false; scene.objects.len()];
-    for c in exact_contacts(scene, PHYS_TOLERANCE) {
+    for c in bones {
         if let Owner::Object(i) = c.owner {
             entered[i] = true;
         }
@@ -41,10 +46,8 @@ pub(super) fn leave_out_entered(scene: &mut Scene, contacts: &[ContactBox], hold
     let mut removed = 0;
     for i in (0..scene.objects.len()).rev() {
         let o = &scene.objects[i];
-        if !entered[i] || holds[i] || o.category.is_hanging() || contacts.iter().any(|c| sits_at(c, o)) {
-            continue;
-        }
-        if is_last_anchor(scene, i) {
+        let kept = holds[i] || o.category.is_hanging() || contacts.iter().any(|c| sits_at(c, o));
+        if !entered[i] || kept || is_last_anchor(scene, i) {
             continue;
         }
         scene.objects.remove(i);
@@ -87,7 +90,9 @@ fn is_last_anchor(scene: &Scene, i: usize) -> bool {
 mod tests {
     use super::*;
     use crate::data::generate_room;
+    use crate::generator::phys_guidance::PHYS_TOLERANCE;
     use crate::human::{Body, Conditions, Motion, sit, stand};
+    use crate::sim::exact_contacts;
     use glam::DVec2;
 
     /// A 5 × 4 m room of type `room` with a person standing at (2, 2) and a diner sitting at
@@ -107,8 +112,9 @@ mod tests {
 
     fn leave_out(scene: &mut Scene, holds: &[bool]) -> (usize, Vec<bool>) {
         let contacts = Conditions::contact_boxes_of(scene);
+        let bones = exact_contacts(scene, PHYS_TOLERANCE);
         let mut holds = holds.to_vec();
-        let n = leave_out_entered(scene, &contacts, &mut holds);
+        let n = leave_out_entered(scene, &bones, &contacts, &mut holds);
         (n, holds)
     }
 

@@ -32,14 +32,15 @@ const ROUNDS: usize = 4;
 /// Moves every standing piece that holds nobody (`holds[i]` false) out of the bones that enter it,
 /// where that keeps it inside, apart from the others and no more in people's way, else narrows it
 /// on their side. Returns how many pieces moved or narrowed (none when the bodies would end no less
-/// deep in the pieces).
-pub(super) fn push_off_bodies(scene: &mut Scene, clearance: &Clearance, holds: &[bool]) -> usize {
+/// deep in the pieces) and the bones still deeper than the check's tolerance in the scene it leaves.
+pub(super) fn push_off_bodies(scene: &mut Scene, clearance: &Clearance, holds: &[bool]) -> (usize, Vec<EngineContact>) {
     let before = scene.objects.clone();
-    let mut contacts = exact_contacts(scene, PHYS_TOLERANCE);
-    let start = free_depth(holds, &contacts);
+    let first = exact_contacts(scene, PHYS_TOLERANCE);
+    let start = free_depth(holds, &first);
     if start <= 0.0 {
-        return 0;
+        return (0, first);
     }
+    let mut contacts = first.clone();
     let polygon = scene.floor_plan.polygon();
     let mut moved = vec![false; scene.objects.len()];
     for _ in 0..ROUNDS {
@@ -81,9 +82,9 @@ pub(super) fn push_off_bodies(scene: &mut Scene, clearance: &Clearance, holds: &
     }
     if free_depth(holds, &contacts) >= start {
         scene.objects = before;
-        return 0;
+        return (0, first);
     }
-    moved.iter().filter(|m| **m).count()
+    (moved.iter().filter(|m| **m).count(), contacts)
 }
 
 /// The sum of the depths (m, over bones and frames) by which the bodies enter pieces that hold nobody.
@@ -167,9 +168,9 @@ mod tests {
         let before = scene.objects[0].clone();
         let clearance = clearance_of(&scene);
         // Holding someone: it stays.
-        assert_eq!(push_off_bodies(&mut scene, &clearance, &[true]), 0);
+        assert_eq!(push_off_bodies(&mut scene, &clearance, &[true]).0, 0);
         assert_eq!(scene.objects[0], before);
-        assert_eq!(push_off_bodies(&mut scene, &clearance, &[false]), 1);
+        assert_eq!(push_off_bodies(&mut scene, &clearance, &[false]).0, 1);
         let o = &scene.objects[0];
         let m = DVec2::new(o.center[0] - before.center[0], o.center[1] - before.center[1]);
         // One push, straight away from the person (south), by the depth plus 1 cm; size unchanged.
@@ -188,7 +189,7 @@ mod tests {
         assert_eq!(again, depth);
         let before = scene.objects[0].clone();
         let clearance = clearance_of(&scene);
-        assert_eq!(push_off_bodies(&mut scene, &clearance, &[false]), 1);
+        assert_eq!(push_off_bodies(&mut scene, &clearance, &[false]).0, 1);
         let o = &scene.objects[0];
         // Its back stays at the wall, its front comes in by the push's southward part.
         assert!((o.center[1] - o.size[1] * 0.5 - back).abs() < 1e-9, "{o:?}");

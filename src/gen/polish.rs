@@ -152,7 +152,7 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
         .zip(&start)
         .map(|(o, s)| DVec2::new(o.center[0], o.center[1]).distance(*s))
         .fold(0.0, f64::max);
-    let holds = people.holding(scene.objects.len());
+    let mut holds = people.holding(scene.objects.len());
     report.relocated = relocate_off_paths(scene, &people.clearance, &holds);
     report.swapped = single_beds_off_paths(scene, &people);
     report.trimmed = trim_deep_seats(scene, &people);
@@ -160,9 +160,9 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
     report.widened = widen_for_people(scene, &people);
     report.narrowed += fit_into_room(scene, &people);
     report.narrowed += narrow_off_paths(scene, &people.cond, &holds);
-    report.pushed = push_off_bodies(scene, &people.clearance, &holds);
-    let mut holds = holds;
-    report.left_out = leave_out_entered(scene, &people.cond.contact_boxes, &mut holds);
+    let (pushed, bones) = push_off_bodies(scene, &people.clearance, &holds);
+    report.pushed = pushed;
+    report.left_out = leave_out_entered(scene, &bones, &people.cond.contact_boxes, &mut holds);
     let overlaps = resolve_overlaps(scene, &holds);
     report.narrowed += overlaps.narrowed;
     report.removed = overlaps.removed;
