@@ -109,7 +109,7 @@ fn span_frames<'a>(human: &'a Human, contact: &ContactBox) -> impl Iterator<Item
 /// Margin around a box in the width of a new piece (m).
 const SIDE_MARGIN: f64 = 0.04;
 /// Highest palm that touches a top rather than a front face (m).
-const TOP_TOUCH_HEIGHT: f64 = 1.0;
+pub(super) const TOP_TOUCH_HEIGHT: f64 = 1.0;
 
 /// A new object that holds `contact` in `scene`, or `None` where the room type has no piece for it.
 pub fn support_for(scene: &Scene, contact: &ContactBox) -> Option<Object> {

@@ -114,7 +114,7 @@ pub(super) fn trim_beds_to_sitters(scene: &mut Scene, people: &Occupancy) -> usi
 }
 
 /// Takes `cut` (m) off `o`'s depth at its front (local +y), its back where it was.
-fn trim_front(o: &mut Object, cut: f64) {
+pub(super) fn trim_front(o: &mut Object, cut: f64) {
     let (_, ay) = o.obox().axes();
     o.size[1] -= cut;
     shift(o, -ay * (cut * 0.5));

@@ -33,6 +33,7 @@ mod sampler;
 mod schedule;
 mod shipped;
 pub mod tokens;
+mod touched_fronts;
 pub mod train;
 mod walls;
 mod wide_seats;

@@ -49,7 +49,7 @@
 
 use super::bed_swap::single_beds_off_paths;
 use super::clearance::Clearance;
-use super::completion::{SeatGaps, height_within, support_for};
+use super::completion::{SeatGaps, TOP_TOUCH_HEIGHT, height_within, support_for};
 use super::deep_seats::{trim_beds_to_sitters, trim_deep_seats};
 use super::inside::{CLEARANCE, fits_inside, inside_push, worst_offence};
 use super::left_out::leave_out_entered;
@@ -57,6 +57,7 @@ use super::occupancy::Occupancy;
 use super::off_bodies::push_off_bodies;
 use super::overlaps::{narrow_by, resolve_overlaps};
 use super::relocate::{is_solid, relocate_off_paths};
+use super::touched_fronts::trim_touched_fronts;
 use super::walls::{stands_against_wall, to_wall_behind, wall_poses};
 use super::wide_seats::widen_for_people;
 use crate::eval::contact_iou;
@@ -157,6 +158,7 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
     report.swapped = single_beds_off_paths(scene, &people);
     report.trimmed = trim_deep_seats(scene, &people);
     report.trimmed += trim_beds_to_sitters(scene, &people);
+    report.trimmed += trim_touched_fronts(scene, &people);
     report.widened = widen_for_people(scene, &people);
     report.narrowed += fit_into_room(scene, &people);
     report.narrowed += narrow_off_paths(scene, &people.cond, &holds);
@@ -506,6 +508,11 @@ fn fit_size(o: &mut Object, contact: &ContactBox, gaps: &SeatGaps) -> bool {
     let surface = template(o).surface.filter(|_| matches!(contact.action, Action::Sit | Action::Lie));
     let height = match surface {
         // Any height real pieces of the category have, give or take MAX_GROW_HEIGHT.
+        // A top above a resting palm comes down to it where the category's real pieces (give or
+        // take MAX_GROW_HEIGHT) are that low; part of the way would only put it in the forearm.
+        _ if rests_palm_on_top(o, contact) && o.size[2] > top => {
+            Some(top).filter(|&h| h >= height_range(o.category).0 - MAX_GROW_HEIGHT)
+        }
         Some(_) => {
             let (lo, hi) = height_range(o.category);
             Some(height_within(o.category, o.size, top, (lo - MAX_GROW_HEIGHT, hi + MAX_GROW_HEIGHT)))
@@ -527,6 +534,27 @@ fn fit_size(o: &mut Object, contact: &ContactBox, gaps: &SeatGaps) -> bool {
     o.size != before
 }
 
+/// Whether `contact` is a palm resting on `o`'s top: a touch at most [`TOP_TOUCH_HEIGHT`] high on
+/// a table, cabinet or shelf no taller than that (the data rests the palm on the top of such a
+/// piece, the top at the touch box's top, and touches a taller one's front).
+fn rests_palm_on_top(o: &Object, contact: &ContactBox) -> bool {
+    contact.action == Action::Touch
+        && contact.obox.center.z <= TOP_TOUCH_HEIGHT
+        && o.size[2] <= TOP_TOUCH_HEIGHT
+        && matches!(o.category.group(), Group::Table | Group::Cabinet | Group::Shelf)
+}
+
+/// Whether `contact` is a palm on `o`'s front face: a touch of a cabinet, shelf or table taller
+/// than [`TOP_TOUCH_HEIGHT`] (the data touches such a piece on its front, facing it).
+pub(super) fn touches_front(o: &Object, contact: &ContactBox) -> bool {
+    contact.action == Action::Touch
+        && o.size[2] > TOP_TOUCH_HEIGHT
+        && matches!(o.category.group(), Group::Table | Group::Cabinet | Group::Shelf)
+}
+
+/// How much deeper than a front touch's pressed volume the band behind the front face is (m).
+const FRONT_TOUCH_SLACK: f64 = 0.03;
+
 /// The part of `o`'s footprint (local min, max corners) the person of `contact` must be on: a
 /// seat's or bed's surface for sitting and lying (on a chair or sofa, clear of the backrest and
 /// near enough the front edge for the knees to pass it, [`SeatGaps`]), the whole footprint
@@ -534,6 +562,12 @@ fn fit_size(o: &mut Object, contact: &ContactBox, gaps: &SeatGaps) -> bool {
 fn holding_region(o: &Object, contact: &ContactBox, gaps: &SeatGaps) -> (DVec2, DVec2) {
     let half = DVec2::new(o.size[0], o.size[1]) * 0.5;
     let action = contact.action;
+    if touches_front(o, contact) {
+        // The pressed volume just behind the front face (local +y), where the data puts the palm.
+        let (lo, hi) = local_extent(&contact.obox, &o.obox());
+        let depth = hi.y - lo.y + FRONT_TOUCH_SLACK;
+        return (DVec2::new(-half.x, (half.y - depth).max(-half.y)), half);
+    }
     let Some(surface) = template(o).surface.filter(|_| matches!(action, Action::Sit | Action::Lie)) else {
         return (-half, half);
     };
