@@ -15,9 +15,11 @@
 //! its people allow). A seat's or bed's surface goes to the top of its person's support
 //! volume (within the heights of the category's real pieces, give or take 15 cm; a bed up to
 //! 0.7 m tall has no headboard and its mattress is its top, so a high sitter gets a low bed where
-//! a tall one cannot reach them), other holders
+//! a tall one cannot reach them), a low table's or cabinet's top comes down to a palm resting on it
+//! where real pieces of its category are that low, other holders
 //! grow to the top of their box (at most 15 cm), and width and depth grow by at most 20 cm where
-//! the box needs it. Every round then (1) moves each holder by the smallest shift that puts its
+//! the box needs it. A piece taller than a metre is touched on its front: the toucher's pressed
+//! volume must lie just behind its front face. Every round then (1) moves each holder by the smallest shift that puts its
 //! boxes' footprints on the part they must be on (a seat's surface clear of its backrest and near
 //! enough its front edge for the knees to pass it by 7 cm, as in the data; a mattress; else the
 //! footprint) and pushes pieces out of people's way (where footprint and height meet a walking
@@ -34,6 +36,8 @@
 //! sofa too deep for its sitters' knees to pass its front edge (one against a wall) loses depth at
 //! the front, an L-shaped sofa or chaise too deep for any real one becoming a multi-seat sofa, and
 //! a bed loses width on the side its sitter faces, down to the narrowest real one (`deep_seats`);
+//! a tall piece whose touchers' palms are still inside it (its back at a wall) loses depth at the
+//! front, down to the shallowest real one (`touched_fronts`);
 //! a sofa whose people still overhang its seat at an end grows there until
 //! the seat spans them, within its category's widest real piece (`wide_seats`). A piece still
 //! poking out of the floor plan is then moved back over its people and inside or narrowed by at
@@ -495,7 +499,9 @@ fn bed_local_facing(o: &Object, contact: &ContactBox) -> DVec2 {
 }
 
 /// Fits a floor-standing object to `contact`: a seat's or bed's surface goes to the top of a sitter's
-/// or sleeper's support volume (up or down), anything else grows to the top of the box; width and
+/// or sleeper's support volume (up or down), a low piece's top down to a palm resting on it
+/// ([`rests_palm_on_top`]; only where the category's real pieces, less 15 cm, are that low),
+/// anything else grows to the top of the box; width and
 /// depth grow until the box fits the part it must be on ([`holding_region`]). A surface's height
 /// stays within the category's real pieces' (± 15 cm), any other height changes by at most 15 cm,
 /// width and depth by at most 20 cm. Returns whether it changed.
@@ -995,6 +1001,51 @@ mod tests {
         let seats: Vec<Object> = scene.objects.iter().filter(|o| o.category.affords(Action::Sit)).cloned().collect();
         assert!(r.added >= 1, "{r:?}");
         assert!(contact_iou(&third.obox, &seats) >= COVERED, "{r:?} {:?}", scene.objects);
+    }
+
+    #[test]
+    fn a_low_piece_touched_on_its_top_comes_down_to_the_palm_within_real_heights() {
+        let mut checked = 0;
+        for index in 0..200 {
+            let mut scene = generate_room(RoomType::Living, 5, index, false).scene;
+            let boxes = Conditions::contact_boxes_of(&scene);
+            let Some((touch, i)) = boxes.iter().filter(|b| b.action == Action::Touch).find_map(|b| {
+                let i = scene
+                    .objects
+                    .iter()
+                    .position(|o| rests_palm_on_top(o, b) && contact_iou(&b.obox, std::slice::from_ref(o)) > 0.9)?;
+                Some((b.clone(), i))
+            }) else {
+                continue;
+            };
+            // The data rests the palm on the top: the top at the touch box's top.
+            let right = scene.objects[i].size[2];
+            assert!((right - touch.obox.z_range().1).abs() < 0.015, "{index} {:?} {touch:?}", scene.objects[i]);
+            let o = &mut scene.objects[i];
+            o.size[2] += 0.25;
+            o.center[2] = o.size[2] * 0.5;
+            polish_scene(&mut scene, 30);
+            let now = scene.objects[i].size[2];
+            assert!((now - right).abs() < 0.015, "room {index}: top at {now}, the palm's at {right}");
+            checked += 1;
+            if checked == 3 {
+                break;
+            }
+        }
+        assert_eq!(checked, 3, "rooms with a low touched piece checked");
+        // A dining table touched 45 cm up stays a dining table's height: no real one is that low,
+        // and part of the way down would only put its top in the forearm.
+        let mut scene = generate_room(RoomType::Dining, 3, 0, false).scene;
+        scene.floor_plan.polygon = vec![[0.0, 0.0], [5.0, 0.0], [5.0, 4.0], [0.0, 4.0]];
+        let body = crate::human::Body::default();
+        let mut m = crate::human::Motion::new(body, 30.0);
+        let target = glam::DVec3::new(2.5, 1.9, 0.45);
+        m.hold(crate::human::touch(&body, target, 0.0, crate::human::Side::Right), 3, Action::Touch);
+        scene.humans = vec![m.into_human("h0")];
+        let table = Object::standing("o0", crate::scene::Category::DiningTable, [2.5, 2.3], [1.4, 0.9, 0.75]);
+        scene.objects = vec![table];
+        polish_scene(&mut scene, 30);
+        assert_eq!(scene.objects[0].size[2], 0.75);
     }
 
     #[test]

@@ -38,3 +38,65 @@ pub(super) fn trim_touched_fronts(scene: &mut Scene, people: &Occupancy) -> usiz
     }
     trimmed
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::data::generate_room;
+    use crate::generator::polish_scene;
+    use crate::human::{Body, Motion, Side, palm_of, touch};
+    use crate::scene::{Category, Object, RoomType};
+    use crate::sim::{CheckConfig, check_scene};
+    use glam::DVec3;
+
+    /// A 5 × 4 m bedroom with a wardrobe `depth` (m) deep against the north wall (facing south,
+    /// 5 cm off the wall) and a person facing north who touches it at 1.2 m, `inside` (m) behind
+    /// its front face.
+    fn touched_wardrobe(depth: f64, inside: f64) -> Scene {
+        let mut scene = generate_room(RoomType::Bedroom, 3, 0, false).scene;
+        scene.floor_plan.polygon = vec![[0.0, 0.0], [5.0, 0.0], [5.0, 4.0], [0.0, 4.0]];
+        let mut wardrobe = Object::standing("o0", Category::Wardrobe, [2.5, 3.95 - depth * 0.5], [1.8, depth, 2.1]);
+        wardrobe.yaw = std::f64::consts::PI;
+        let front = 3.95 - depth;
+        let body = Body::default();
+        let mut m = Motion::new(body, 30.0);
+        m.hold(touch(&body, DVec3::new(2.5, front + inside, 1.2), 0.0, Side::Right), 3, Action::Touch);
+        scene.humans = vec![m.into_human("h0")];
+        scene.objects = vec![wardrobe];
+        scene
+    }
+
+    fn palm_y(scene: &Scene) -> f64 {
+        palm_of(&scene.humans[0], 0, "right").unwrap().y
+    }
+
+    #[test]
+    fn a_wardrobe_against_the_wall_with_the_palm_inside_loses_depth_at_the_front() {
+        let mut scene = touched_wardrobe(0.62, 0.1);
+        let check = CheckConfig { stability: false, ..CheckConfig::default() };
+        assert!(!check_scene(&scene, &check).violations.is_empty(), "the forearm is in the wardrobe first");
+        let r = polish_scene(&mut scene, 30);
+        let o = &scene.objects[0];
+        let (back, front) = (o.center[1] + o.size[1] * 0.5, o.center[1] - o.size[1] * 0.5);
+        assert!((3.94..=4.0).contains(&back), "its back at the wall: {back} {r:?}");
+        assert!(o.size[1] < 0.59 && o.size[1] >= size_range(Category::Wardrobe, 1).0, "{}", o.size[1]);
+        // The front face at the palm (within the half-cube the touch box reaches past it).
+        assert!((palm_y(&scene) - front).abs() < 0.07, "palm {} front {front}", palm_y(&scene));
+        assert_eq!(check_scene(&scene, &check).violations, vec![], "{r:?}");
+        assert!(r.trimmed >= 1);
+    }
+
+    #[test]
+    fn a_wardrobe_touched_on_its_face_or_too_deep_inside_keeps_what_it_can() {
+        // Palm on the face already: nothing to trim.
+        let mut scene = touched_wardrobe(0.6, 0.0);
+        let before = scene.objects[0].size;
+        polish_scene(&mut scene, 30);
+        assert!((scene.objects[0].size[1] - before[1]).abs() < 1e-9);
+        // Palm 40 cm inside a 60 cm wardrobe: no real wardrobe is 20 cm deep; it stops at the
+        // shallowest real one.
+        let mut scene = touched_wardrobe(0.6, 0.4);
+        polish_scene(&mut scene, 30);
+        assert!((scene.objects[0].size[1] - size_range(Category::Wardrobe, 1).0).abs() < 1e-9);
+    }
+}
