@@ -6,8 +6,10 @@
 //! L-shaped sofa or a chaise longue, 1.4 m and more) becomes a multi-seat sofa. Likewise a bed whose
 //! sitter's knees do not pass the edge they face by those 7 cm (its other side at a wall) is
 //! narrowed on their side, keeping everyone it holds on it (a sitter's box over that edge by no
-//! more than polishing allows) and no narrower than the category's narrowest real piece. Nothing
-//! moves.
+//! more than polishing allows) and no narrower than the category's narrowest real piece. A sofa
+//! whose sleeper lies behind the middle of its seat (shoulders in the backrest, the sofa's back at a
+//! wall) loses depth at the front until the seat's middle, which moves back with it, is at them.
+//! Nothing moves.
 
 use super::occupancy::Occupancy;
 use super::polish::{BED_EDGE_OVERHANG, bed_edge_faced, local_extent, shift};
@@ -109,6 +111,61 @@ pub(super) fn trim_beds_to_sitters(scene: &mut Scene, people: &Occupancy) -> usi
             }
         }
         trimmed += usize::from(any);
+    }
+    trimmed
+}
+
+/// How far behind the middle of a sofa's seat depth a sleeper may lie (m) before the sofa is
+/// trimmed to them.
+const SLEEPER_OFF_MIDDLE: f64 = 0.03;
+
+/// Trims every sofa whose sleepers lie further back than the middle of its seat (the data lays
+/// people along the seat's middle; further back, their shoulders are in the backrest) until the
+/// seat's middle is at the sleeper furthest back, its back staying where it was: a sofa against a
+/// wall cannot go back to them. No box it holds loses the seat, and no sofa gets shallower than
+/// its category's shallowest real piece (turning a deep L-shaped sofa into a multi-seat one changed
+/// no val room and raised CKL).
+/// Returns how many it trimmed.
+pub(super) fn trim_sofas_to_sleepers(scene: &mut Scene, people: &Occupancy) -> usize {
+    let mut trimmed = 0;
+    for i in 0..scene.objects.len() {
+        let held = people.held_by(i);
+        let o = &mut scene.objects[i];
+        if o.category.group() != Group::Sofa || !held.iter().any(|(c, _)| c.action == Action::Lie) {
+            continue;
+        }
+        let b = o.obox();
+        let extents: Vec<(Action, DVec2, DVec2)> =
+            held.iter().map(|(c, _)| (c.action, local_extent(&c.obox, &b).0, local_extent(&c.obox, &b).1)).collect();
+        // Each sleeper's middle, from the back face; the furthest back of them decides.
+        let lies = extents.iter().filter(|(a, _, _)| *a == Action::Lie);
+        let wanted = lies.map(|(_, lo, hi)| (lo.y + hi.y) * 0.5 + o.size[1] * 0.5).fold(f64::INFINITY, f64::min);
+        // The front of the box furthest forward stays on the seat.
+        let keep = extents.iter().map(|(_, _, hi)| hi.y).fold(f64::NEG_INFINITY, f64::max);
+        let middle = |o: &Object, cut: f64| {
+            let mut t = o.clone();
+            t.size[1] -= cut;
+            template(&t).surface.map_or(0.0, |s| (s.min.y + s.max.y) * 0.5 + t.size[1] * 0.5)
+        };
+        if middle(o, 0.0) - wanted <= SLEEPER_OFF_MIDDLE {
+            continue;
+        }
+        // The middle moves back as the sofa gets shallower: bisect for the cut that puts it at
+        // the sleeper, within what the other boxes and real pieces allow.
+        let most = (o.size[1] * 0.5 - keep).min(o.size[1] - size_range(o.category, 1).0).max(0.0);
+        let (mut lo, mut hi) = (0.0, most);
+        if middle(o, most) >= wanted {
+            lo = most;
+        } else {
+            for _ in 0..30 {
+                let mid = 0.5 * (lo + hi);
+                if middle(o, mid) > wanted { lo = mid } else { hi = mid }
+            }
+        }
+        if lo > 1e-3 {
+            trim_front(o, lo);
+            trimmed += 1;
+        }
     }
     trimmed
 }
@@ -241,5 +298,56 @@ mod tests {
             }
         }
         assert!(swapped > 0);
+    }
+
+    /// A 2.2 m multi-seat sofa `depth` (m) deep, its back 1 cm off the south wall of a 6 × 5 m
+    /// living room, facing north, and a person lying along it `behind` (m) behind its seat's
+    /// middle; the sofa holds them.
+    fn sofa_with_sleeper(depth: f64, behind: f64) -> (Scene, Occupancy) {
+        use crate::geom::yaw_facing;
+        use crate::human::{Body, Motion, lie};
+        let mut scene = generate_room(RoomType::Living, 3, 0, false).scene;
+        scene.floor_plan.polygon = vec![[0.0, 0.0], [6.0, 0.0], [6.0, 5.0], [0.0, 5.0]];
+        let sofa = Object::standing("o0", Category::MultiSeatSofa, [3.0, 0.01 + depth * 0.5], [2.2, depth, 0.85]);
+        let seat = template(&sofa).surface.unwrap();
+        let middle = sofa.center[1] + (seat.min.y + seat.max.y) * 0.5;
+        let body = Body::default();
+        let mut m = Motion::new(body, 30.0);
+        m.hold(lie(&body, DVec2::new(2.4, middle - behind), seat.height, yaw_facing(DVec2::X)), 3, Action::Lie);
+        scene.humans = vec![m.into_human("h0")];
+        scene.objects = vec![sofa];
+        let mut people = Occupancy::of(&scene);
+        people.holders = vec![(0, 0)];
+        (scene, people)
+    }
+
+    /// The seat's middle (world y) and the sofa's back (world y) of the south-wall sofa.
+    fn middle_and_back(o: &Object) -> (f64, f64) {
+        let seat = template(o).surface.unwrap();
+        (o.center[1] + (seat.min.y + seat.max.y) * 0.5, o.center[1] - o.size[1] * 0.5)
+    }
+
+    #[test]
+    fn a_deep_sofa_whose_sleeper_lies_against_its_back_loses_depth_until_they_lie_in_the_middle() {
+        let (mut scene, people) = sofa_with_sleeper(1.1, 0.1);
+        let lie = people.cond.contact_boxes[0].obox.center.y;
+        assert_eq!(trim_sofas_to_sleepers(&mut scene, &people), 1);
+        let o = &scene.objects[0];
+        let (middle, back) = middle_and_back(o);
+        assert!((middle - lie).abs() < 0.005, "seat's middle {middle}, sleeper {lie}");
+        assert!((back - 0.01).abs() < 1e-9, "its back stays at the wall: {back}");
+        assert!(o.size[1] < 1.1 && o.size[1] >= size_range(Category::MultiSeatSofa, 1).0);
+        // A sleeper already in the middle (or in front of it) leaves the sofa as it is.
+        for behind in [0.0, -0.1] {
+            let (mut scene, people) = sofa_with_sleeper(1.1, behind);
+            let before = scene.objects.clone();
+            assert_eq!(trim_sofas_to_sleepers(&mut scene, &people), 0);
+            assert_eq!(scene.objects, before);
+        }
+        // Far behind a sofa only a little deeper than the shallowest real one: it stops there.
+        let shallowest = size_range(Category::MultiSeatSofa, 1).0;
+        let (mut scene, people) = sofa_with_sleeper(shallowest + 0.05, 0.3);
+        trim_sofas_to_sleepers(&mut scene, &people);
+        assert!((scene.objects[0].size[1] - shallowest).abs() < 1e-9);
     }
 }

@@ -35,7 +35,8 @@
 //! way, else a single bed where that clears some of it (`bed_swap`); a chair or
 //! sofa too deep for its sitters' knees to pass its front edge (one against a wall) loses depth at
 //! the front, an L-shaped sofa or chaise too deep for any real one becoming a multi-seat sofa, and
-//! a bed loses width on the side its sitter faces, down to the narrowest real one (`deep_seats`);
+//! a bed loses width on the side its sitter faces, down to the narrowest real one, and a sofa
+//! whose sleeper lies behind its seat's middle loses depth at the front (`deep_seats`);
 //! a tall piece whose touchers' palms are still inside it (its back at a wall) loses depth at the
 //! front, down to the shallowest real one (`touched_fronts`);
 //! a sofa whose people still overhang its seat at an end grows there until
@@ -54,7 +55,7 @@
 use super::bed_swap::single_beds_off_paths;
 use super::clearance::Clearance;
 use super::completion::{SeatGaps, TOP_TOUCH_HEIGHT, height_within, support_for};
-use super::deep_seats::{trim_beds_to_sitters, trim_deep_seats};
+use super::deep_seats::{trim_beds_to_sitters, trim_deep_seats, trim_sofas_to_sleepers};
 use super::inside::{CLEARANCE, fits_inside, inside_push, worst_offence};
 use super::left_out::leave_out_entered;
 use super::occupancy::Occupancy;
@@ -162,6 +163,7 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
     report.swapped = single_beds_off_paths(scene, &people);
     report.trimmed = trim_deep_seats(scene, &people);
     report.trimmed += trim_beds_to_sitters(scene, &people);
+    report.trimmed += trim_sofas_to_sleepers(scene, &people);
     report.trimmed += trim_touched_fronts(scene, &people);
     report.widened = widen_for_people(scene, &people);
     report.narrowed += fit_into_room(scene, &people);
