@@ -938,25 +938,34 @@ mod tests {
         assert!(checked >= 2, "{checked} rooms with a bed sitter checked");
     }
 
+    /// Rooms of type `room` (seed 5) with a box of `action` that a piece `holds` covers over 90 %:
+    /// (room index, scene, box, piece index), the first such box of each room.
+    fn rooms_with_held(
+        room: RoomType,
+        action: Action,
+        holds: fn(&Object, &ContactBox) -> bool,
+    ) -> impl Iterator<Item = (u64, Scene, ContactBox, usize)> {
+        (0..200).filter_map(move |index| {
+            let scene = generate_room(room, 5, index, false).scene;
+            let boxes = Conditions::contact_boxes_of(&scene);
+            let (b, i) = boxes.into_iter().filter(|b| b.action == action).find_map(|b| {
+                let covered = |o: &Object| holds(o, &b) && contact_iou(&b.obox, std::slice::from_ref(o)) > 0.9;
+                let i = scene.objects.iter().position(covered)?;
+                Some((b, i))
+            })?;
+            Some((index, scene, b, i))
+        })
+    }
+
     #[test]
     fn a_touched_piece_turned_away_turns_back_to_face_its_toucher() {
+        let cabinet_like =
+            |o: &Object, _: &ContactBox| matches!(o.category.group(), Group::Cabinet | Group::Shelf | Group::Table);
+        let rooms = rooms_with_held(RoomType::Bedroom, Action::Touch, cabinet_like)
+            .map(|r| (RoomType::Bedroom, r))
+            .chain(rooms_with_held(RoomType::Living, Action::Touch, cabinet_like).map(|r| (RoomType::Living, r)));
         let mut checked = 0;
-        let rooms = [RoomType::Bedroom, RoomType::Living].map(|r| (0..100).map(move |i| (r, i))).into_iter().flatten();
-        for (room, index) in rooms {
-            if checked == 3 {
-                break;
-            }
-            let mut scene = generate_room(room, 5, index, false).scene;
-            let boxes = Conditions::contact_boxes_of(&scene);
-            let Some((touch, i)) = boxes.iter().filter(|b| b.action == Action::Touch).find_map(|b| {
-                let i = scene.objects.iter().position(|o| {
-                    matches!(o.category.group(), Group::Cabinet | Group::Shelf | Group::Table)
-                        && contact_iou(&b.obox, std::slice::from_ref(o)) > 0.9
-                })?;
-                Some((b.clone(), i))
-            }) else {
-                continue;
-            };
+        for (room, (index, mut scene, touch, i)) in rooms.take(3) {
             // The data's piece faces its toucher; a quarter turn leaves it square, its side to them.
             assert!(facing(scene.objects[i].yaw).dot(facing(touch.obox.yaw)) < -0.99);
             scene.objects[i].yaw += std::f64::consts::FRAC_PI_2;
@@ -1008,18 +1017,8 @@ mod tests {
     #[test]
     fn a_low_piece_touched_on_its_top_comes_down_to_the_palm_within_real_heights() {
         let mut checked = 0;
-        for index in 0..200 {
-            let mut scene = generate_room(RoomType::Living, 5, index, false).scene;
-            let boxes = Conditions::contact_boxes_of(&scene);
-            let Some((touch, i)) = boxes.iter().filter(|b| b.action == Action::Touch).find_map(|b| {
-                let i = scene
-                    .objects
-                    .iter()
-                    .position(|o| rests_palm_on_top(o, b) && contact_iou(&b.obox, std::slice::from_ref(o)) > 0.9)?;
-                Some((b.clone(), i))
-            }) else {
-                continue;
-            };
+        for (index, mut scene, touch, i) in rooms_with_held(RoomType::Living, Action::Touch, rests_palm_on_top).take(3)
+        {
             // The data rests the palm on the top: the top at the touch box's top.
             let right = scene.objects[i].size[2];
             assert!((right - touch.obox.z_range().1).abs() < 0.015, "{index} {:?} {touch:?}", scene.objects[i]);
@@ -1030,9 +1029,6 @@ mod tests {
             let now = scene.objects[i].size[2];
             assert!((now - right).abs() < 0.015, "room {index}: top at {now}, the palm's at {right}");
             checked += 1;
-            if checked == 3 {
-                break;
-            }
         }
         assert_eq!(checked, 3, "rooms with a low touched piece checked");
         // A dining table touched 45 cm up stays a dining table's height: no real one is that low,
