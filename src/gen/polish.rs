@@ -40,7 +40,8 @@
 //! a tall piece whose touchers' palms are still inside it (its back at a wall) loses depth at the
 //! front, down to the shallowest real one (`touched_fronts`);
 //! a sofa whose people still overhang its seat at an end grows there until
-//! the seat spans them, within its category's widest real piece (`wide_seats`). A piece still
+//! the seat spans them, within its category's widest real piece (a loveseat too short for its
+//! sleeper becoming a multi-seat sofa, `wide_seats`). A piece still
 //! poking out of the floor plan is then moved back over its people and inside or narrowed by at
 //! most 10 cm, a piece holding nobody is narrowed off the walkers' feet where 10 cm do it, one
 //! that people's bones still enter (a diner's thighs under a table top) is pushed or narrowed out
@@ -48,9 +49,9 @@
 //! room's last bed, dining table or sofa (`left_out`), and overlaps that survive are narrowed away
 //! or lose their smaller piece (`overlaps`; never a piece that holds a person).
 //!
-//! It re-categorises nothing but a double bed in people's way, which may become a single bed, and
-//! a sofa too deep for its sitters, which may become a multi-seat sofa, and adds only within the
-//! room type's object limit.
+//! It re-categorises nothing but a double bed in people's way, which may become a single bed, a
+//! sofa too deep for its sitters and a loveseat too short for its sleeper, which may become a
+//! multi-seat sofa, and adds only within the room type's object limit.
 
 use super::bed_swap::single_beds_off_paths;
 use super::clearance::Clearance;

@@ -2,9 +2,11 @@
 //! sofa's seat by moving the sofa, but a sofa with people at both ends, or one that cannot slide
 //! along its wall (a side wall, a corner, a neighbour), leaves a box over an arm: the sitter's
 //! hip and elbow or the sleeper's head and feet end up inside it. Such a sofa grows on the side
-//! (or sides) where its people overhang the seat until the seat between the arms spans them all,
-//! the other side staying where it is — or as far towards that as the widest real piece of its
-//! category goes, each end its share — where the grown sofa stays inside the floor plan, is no
+//! (or sides) where its people overhang the seat until the seat between the arms spans them all
+//! (a sleeper's whole body, head and feet included, not only their support box), the other side
+//! staying where it is — or as far towards that as the widest real piece of its category goes, each
+//! end its share; a loveseat too short for its sleeper becomes a multi-seat sofa, as no real
+//! loveseat seats an adult lying down — where the grown sofa stays inside the floor plan, is no
 //! more in walking or standing people's way and no further into the pieces that hold people.
 //! The other pieces it now overlaps are left to `overlaps`, which narrows or removes them.
 
@@ -14,7 +16,9 @@ use super::polish::{local_extent, shift};
 use super::relocate::is_solid;
 use crate::furniture::{size_range, template};
 use crate::geom::intersection_volume;
-use crate::scene::{Action, Group, Object, Scene};
+use crate::human::ContactBox;
+use crate::scene::{Action, Category, Group, Object, Scene};
+use glam::DVec3;
 
 /// How far inside the seat's ends the people's boxes end up (m).
 const MARGIN: f64 = 0.01;
@@ -35,6 +39,9 @@ pub(super) fn widen_for_people(scene: &mut Scene, people: &Occupancy) -> usize {
         if boxes.is_empty() {
             continue;
         }
+        // Sleepers' whole bodies lie on the seat between the arms, head and feet included.
+        let bodies: Vec<(DVec3, f64)> =
+            boxes.iter().filter(|(c, _)| c.action == Action::Lie).flat_map(|(c, _)| body_points(scene, c)).collect();
         let mut grown = o.clone();
         let (mut grown_low, mut grown_high) = (0.0, 0.0);
         for _ in 0..4 {
@@ -44,6 +51,10 @@ pub(super) fn widen_for_people(scene: &mut Scene, people: &Occupancy) -> usize {
                 .iter()
                 .map(|(c, _)| local_extent(&c.obox, &b))
                 .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (l, h)| (lo.min(l.x), hi.max(h.x)));
+            let (lo, hi) = bodies.iter().fold((lo, hi), |(lo, hi), (p, r)| {
+                let x = b.to_local(*p).x;
+                (lo.min(x - r), hi.max(x + r))
+            });
             let low = (surface.min.x + MARGIN - lo).max(0.0);
             let high = (hi - surface.max.x + MARGIN).max(0.0);
             if low + high <= 1e-3 {
@@ -52,6 +63,16 @@ pub(super) fn widen_for_people(scene: &mut Scene, people: &Occupancy) -> usize {
             grow_sides(&mut grown, low, high);
             grown_low += low;
             grown_high += high;
+        }
+        // No real loveseat is long enough for an adult to lie on (the data lays sleepers only on
+        // seats longer than they are): one that would have to be becomes a multi-seat sofa.
+        let sofa = Category::MultiSeatSofa;
+        if !bodies.is_empty()
+            && grown.size[0] > size_range(grown.category, 0).1
+            && grown.size[0] <= size_range(sofa, 0).1
+            && scene.room_type.categories().contains(&sofa)
+        {
+            grown.category = sofa;
         }
         let widest = size_range(grown.category, 0).1;
         if grown.size[0] > widest {
@@ -80,6 +101,17 @@ pub(super) fn widen_for_people(scene: &mut Scene, people: &Occupancy) -> usize {
         }
     }
     widened
+}
+
+/// The joints of `contact`'s person over its span, each with the radius of its thickest bone.
+fn body_points(scene: &Scene, contact: &ContactBox) -> Vec<(DVec3, f64)> {
+    let Some(h) = scene.humans.iter().find(|h| h.id == contact.human) else { return Vec::new() };
+    let bones = &h.skeleton.bones;
+    let radius = |j: usize| bones.iter().filter(|b| b.a == j || b.b == j).map(|b| b.radius).fold(0.0, f64::max);
+    let [start, end] = contact.frames;
+    (start..end.min(h.frames.len()))
+        .flat_map(|f| (0..h.skeleton.joints.len()).map(move |j| (h.joint_at(f, j), radius(j))))
+        .collect()
 }
 
 /// Makes `o` `low` wider at its local −x end and `high` wider at its +x end, the rest where it was.
@@ -184,5 +216,53 @@ mod tests {
         assert_eq!(widen_for_people(&mut scene, &people), 1);
         let o = &scene.objects[0];
         assert!((o.size[0] - widest).abs() < 1e-9 && (o.center[0] - 2.0).abs() < 1e-9, "{:?}", o);
+    }
+
+    /// A 1.7 m `category` sofa 1 cm off the south wall of a 6 × 5 m room of type `room`, centred
+    /// at x = 3, facing north, and a 1.75 m person lying along its seat's middle, centred on it,
+    /// held by it.
+    fn sofa_with_sleeper(room: RoomType, category: Category) -> (Scene, Occupancy) {
+        use crate::geom::yaw_facing;
+        use crate::human::lie;
+        let mut scene = generate_room(room, 3, 0, false).scene;
+        scene.floor_plan.polygon = vec![[0.0, 0.0], [6.0, 0.0], [6.0, 5.0], [0.0, 5.0]];
+        let sofa = Object::standing("o0", category, [3.0, 0.46], [1.7, 0.9, 0.85]);
+        let seat = template(&sofa).surface.expect("a sofa has a seat");
+        let body = Body::new(1.75);
+        let mut m = Motion::new(body, 30.0);
+        // The pelvis 0.45 statures from the head: the body centred on the sofa.
+        let at = DVec2::new(3.0 - 0.05 * 1.75, 0.46 + (seat.min.y + seat.max.y) * 0.5);
+        m.hold(lie(&body, at, seat.height, yaw_facing(DVec2::X)), 3, Action::Lie);
+        scene.humans = vec![m.into_human("h0")];
+        scene.objects = vec![sofa];
+        let mut people = Occupancy::of(&scene);
+        people.holders = vec![(0, 0)];
+        (scene, people)
+    }
+
+    /// The world x range of the joints of the scene's first person.
+    fn body_ends(scene: &Scene) -> (f64, f64) {
+        let h = &scene.humans[0];
+        let xs = (0..h.skeleton.joints.len()).map(|j| h.joint_at(0, j).x);
+        xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| (lo.min(x), hi.max(x)))
+    }
+
+    #[test]
+    fn a_loveseat_too_short_for_its_sleeper_becomes_a_multi_seat_sofa_spanning_them() {
+        let (mut scene, people) = sofa_with_sleeper(RoomType::Living, Category::LoveseatSofa);
+        let (head, feet) = body_ends(&scene);
+        assert!(seat_ends(&scene.objects[0]).0 > head, "the head is over the arm first");
+        assert_eq!(widen_for_people(&mut scene, &people), 1);
+        let o = &scene.objects[0];
+        assert_eq!(o.category, Category::MultiSeatSofa);
+        let (west, east) = seat_ends(o);
+        assert!(west < head && east > feet, "the seat {west}..{east} spans the body {head}..{feet}");
+        assert!(o.size[0] <= size_range(Category::MultiSeatSofa, 0).1);
+        // A bedroom has no multi-seat sofas: its sofa grows only as far as real ones go.
+        let (mut scene, people) = sofa_with_sleeper(RoomType::Bedroom, Category::Sofa);
+        widen_for_people(&mut scene, &people);
+        let o = &scene.objects[0];
+        assert_eq!(o.category, Category::Sofa);
+        assert!(o.size[0] <= size_range(Category::Sofa, 0).1 + 1e-9, "{:?}", o);
     }
 }
