@@ -135,8 +135,13 @@ pub(super) fn trim_sofas_to_sleepers(scene: &mut Scene, people: &Occupancy) -> u
             continue;
         }
         let b = o.obox();
-        let extents: Vec<(Action, DVec2, DVec2)> =
-            held.iter().map(|(c, _)| (c.action, local_extent(&c.obox, &b).0, local_extent(&c.obox, &b).1)).collect();
+        let extents: Vec<(Action, DVec2, DVec2)> = held
+            .iter()
+            .map(|(c, _)| {
+                let (lo, hi) = local_extent(&c.obox, &b);
+                (c.action, lo, hi)
+            })
+            .collect();
         // Each sleeper's middle, from the back face; the furthest back of them decides.
         let lies = extents.iter().filter(|(a, _, _)| *a == Action::Lie);
         let wanted = lies.map(|(_, lo, hi)| (lo.y + hi.y) * 0.5 + o.size[1] * 0.5).fold(f64::INFINITY, f64::min);

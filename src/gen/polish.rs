@@ -16,15 +16,15 @@
 //! volume (within the heights of the category's real pieces, give or take 15 cm; a bed up to
 //! 0.7 m tall has no headboard and its mattress is its top, so a high sitter gets a low bed where
 //! a tall one cannot reach them), a low table's or cabinet's top comes down to a palm resting on it
-//! where real pieces of its category are that low, other holders
-//! grow to the top of their box (at most 15 cm), and width and depth grow by at most 20 cm where
-//! the box needs it. A piece taller than a metre is touched on its front: the toucher's pressed
-//! volume must lie just behind its front face. Every round then (1) moves each holder by the smallest shift that puts its
-//! boxes' footprints on the part they must be on (a seat's surface clear of its backrest and near
-//! enough its front edge for the knees to pass it by 7 cm, as in the data; a mattress; else the
-//! footprint) and pushes pieces out of people's way (where footprint and height meet a walking
-//! or standing body, or a sitter's or toucher's shins and feet for a piece solid to the floor,
-//! `Clearance`; a holder only as far as its people stay on it), (2) separates overlapping pairs along the shortest
+//! where real pieces of its category are that low, other holders grow to the top of their box (at
+//! most 15 cm), and width and depth grow by at most 20 cm where the box needs it. A piece taller
+//! than a metre is touched on its front: the toucher's pressed volume must lie just behind its
+//! front face. Every round then (1) moves each holder by the smallest shift that puts its boxes'
+//! footprints on the part they must be on (a seat's surface clear of its backrest and near enough
+//! its front edge for the knees to pass it by 7 cm, as in the data; a mattress; else the footprint)
+//! and pushes pieces out of people's way (where footprint and height meet a walking or standing
+//! body, or a sitter's or toucher's shins and feet for a piece solid to the floor, `Clearance`; a
+//! holder only as far as its people stay on it), (2) separates overlapping pairs along the shortest
 //! separating axis that keeps both inside the walls, and (3) moves every footprint inside the floor
 //! plan (corners inside, and off an L-shaped room's inner corner). Holders move a fifth as much for
 //! overlaps and paths; the last third of the rounds leaves contacts alone and the last five paths,
