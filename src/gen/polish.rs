@@ -43,7 +43,8 @@
 //! the seat spans them, within its category's widest real piece (a loveseat too short for its
 //! sleeper becoming a multi-seat sofa, `wide_seats`). A piece still
 //! poking out of the floor plan is then moved back over its people and inside or narrowed by at
-//! most 10 cm, a piece holding nobody is narrowed off the walkers' feet where 10 cm do it, one
+//! most 10 cm, a piece is narrowed off the walkers' feet where 10 cm do it (a holder only as far
+//! as its people stay on it: a bed's foot end off a walkway beside its sleeper), one
 //! that people's bones still enter (a diner's thighs under a table top) is pushed or narrowed out
 //! of them (`off_bodies`), one they still enter is left out unless someone sits at it or it is the
 //! room's last bed, dining table or sofa (`left_out`), and overlaps that survive are narrowed away
@@ -168,7 +169,7 @@ pub fn polish_scene(scene: &mut Scene, rounds: usize) -> PolishReport {
     report.trimmed += trim_touched_fronts(scene, &people);
     report.widened = widen_for_people(scene, &people);
     report.narrowed += fit_into_room(scene, &people);
-    report.narrowed += narrow_off_paths(scene, &people.cond, &holds);
+    report.narrowed += narrow_off_paths(scene, &people.cond, |i, o| keeps_its_people(&people, i, o));
     let (pushed, bones) = push_off_bodies(scene, &people.clearance, &holds);
     report.pushed = pushed;
     report.left_out = leave_out_entered(scene, &bones, &people.cond.contact_boxes, &mut holds);
@@ -354,14 +355,21 @@ fn square_yaw(yaw: f64, wall: f64) -> f64 {
     wrap_angle(wall + ((yaw - wall) / quarter).round() * quarter)
 }
 
-/// Narrows every standing piece that holds nobody off the walkers' feet (the free-space mask the
-/// Col_mot metric counts), where cutting one side by at most 10 cm and a quarter of the piece
-/// clears every covered pixel. Returns how many it narrowed.
-fn narrow_off_paths(scene: &mut Scene, cond: &Conditions, holds: &[bool]) -> usize {
+/// Whether `o`, standing in for object `i`, still has every box `i` holds on the part of it the
+/// box must be on ([`holding_region`]); true for a piece that holds nobody.
+fn keeps_its_people(people: &Occupancy, i: usize, o: &Object) -> bool {
+    people.held_by(i).iter().all(|(c, gaps)| containment_shift(c, gaps, o).length() < 1e-3)
+}
+
+/// Narrows every standing piece off the walkers' feet (the free-space mask the Col_mot metric
+/// counts), where cutting one side by at most 10 cm and a quarter of the piece clears every
+/// covered pixel and the narrowed piece `keeps` its people (`keeps(i, narrowed)`: a holder's
+/// people still on the part they must be on). Returns how many it narrowed.
+fn narrow_off_paths(scene: &mut Scene, cond: &Conditions, keeps: impl Fn(usize, &Object) -> bool) -> usize {
     let (window, free) = (&cond.window, &cond.free_space);
     let mut narrowed = 0;
-    for (o, &held) in scene.objects.iter_mut().zip(holds) {
-        if held || o.category.is_hanging() {
+    for (i, o) in scene.objects.iter_mut().enumerate() {
+        if o.category.is_hanging() {
             continue;
         }
         let b = o.obox();
@@ -387,7 +395,11 @@ fn narrow_off_paths(scene: &mut Scene, cond: &Conditions, holds: &[bool]) -> usi
             (max.y + half.y + margin, ay),
         ];
         let (cut, dir) = cuts.into_iter().min_by(|a, b| a.0.total_cmp(&b.0)).expect("four sides");
-        narrowed += narrow_by(o, dir * cut) as usize;
+        let mut cand = o.clone();
+        if narrow_by(&mut cand, dir * cut) && keeps(i, &cand) {
+            *o = cand;
+            narrowed += 1;
+        }
     }
     narrowed
 }
@@ -891,14 +903,31 @@ mod tests {
         };
         // Its +x side 4 cm past the column's centres: cut back to half a pixel short of them.
         scene.objects = vec![cabinet(x + 0.04 - 0.4)];
-        assert_eq!(narrow_off_paths(&mut scene, &cond, &[false]), 1);
+        assert_eq!(narrow_off_paths(&mut scene, &cond, |_, _| true), 1);
         let o = &scene.objects[0];
         assert!((o.center[0] + o.size[0] * 0.5 - (x - w.pixel() * 0.5)).abs() < 1e-9, "{o:?}");
         assert!((o.center[0] - o.size[0] * 0.5 - (x + 0.04 - 0.8)).abs() < 1e-9, "the far side stays");
-        // 20 cm over: left alone; a piece holding someone: left alone.
-        for (center, holds) in [(x + 0.2 - 0.4, false), (x + 0.04 - 0.4, true)] {
+        // A toucher's palm on the cabinet's top 20 cm in from its +x end: the same cut keeps it
+        // there (it is polishing's rule for a holder), one 15 cm further would not.
+        let mut held = scene.clone();
+        held.objects = vec![cabinet(x + 0.04 - 0.4)];
+        let body = crate::human::Body::default();
+        let mut m = crate::human::Motion::new(body, 30.0);
+        let palm = glam::DVec3::new(x + 0.04 - 0.2, w.center.y + 0.08, 0.8);
+        m.hold(crate::human::touch(&body, palm, std::f64::consts::PI, crate::human::Side::Right), 3, Action::Touch);
+        held.humans = vec![m.into_human("h0")];
+        let mut people = Occupancy::of(&held);
+        people.holders = vec![(0, 0)];
+        let (mut cut, mut cut_more) = (held.objects[0].clone(), held.objects[0].clone());
+        assert!(narrow_by(&mut cut, DVec2::new(-0.04, 0.0)));
+        cut_more.size[0] -= 0.19;
+        cut_more.center[0] -= 0.095;
+        assert!(keeps_its_people(&people, 0, &held.objects[0]), "held at first");
+        assert!(keeps_its_people(&people, 0, &cut) && !keeps_its_people(&people, 0, &cut_more));
+        // 20 cm over: left alone; a piece whose people the cut would leave: left alone.
+        for (center, keeps) in [(x + 0.2 - 0.4, true), (x + 0.04 - 0.4, false)] {
             scene.objects = vec![cabinet(center)];
-            assert_eq!(narrow_off_paths(&mut scene, &cond, &[holds]), 0);
+            assert_eq!(narrow_off_paths(&mut scene, &cond, |_, _| keeps), 0);
             assert_eq!(scene.objects[0], cabinet(center));
         }
     }
