@@ -309,21 +309,16 @@ mod tests {
     /// living room, facing north, and a person lying along it `behind` (m) behind its seat's
     /// middle; the sofa holds them.
     fn sofa_with_sleeper(depth: f64, behind: f64) -> (Scene, Occupancy) {
-        use crate::geom::yaw_facing;
-        use crate::human::{Body, Motion, lie};
-        let mut scene = generate_room(RoomType::Living, 3, 0, false).scene;
-        scene.floor_plan.polygon = vec![[0.0, 0.0], [6.0, 0.0], [6.0, 5.0], [0.0, 5.0]];
         let sofa = Object::standing("o0", Category::MultiSeatSofa, [3.0, 0.01 + depth * 0.5], [2.2, depth, 0.85]);
         let seat = template(&sofa).surface.unwrap();
         let middle = sofa.center[1] + (seat.min.y + seat.max.y) * 0.5;
-        let body = Body::default();
-        let mut m = Motion::new(body, 30.0);
-        m.hold(lie(&body, DVec2::new(2.4, middle - behind), seat.height, yaw_facing(DVec2::X)), 3, Action::Lie);
-        scene.humans = vec![m.into_human("h0")];
-        scene.objects = vec![sofa];
-        let mut people = Occupancy::of(&scene);
-        people.holders = vec![(0, 0)];
-        (scene, people)
+        let stature = crate::human::Body::default().stature;
+        crate::generator::occupancy::sofa_with_sleeper(
+            RoomType::Living,
+            sofa,
+            stature,
+            DVec2::new(2.4, middle - behind),
+        )
     }
 
     /// The seat's middle (world y) and the sofa's back (world y) of the south-wall sofa.

@@ -52,6 +52,31 @@ impl Occupancy {
     }
 }
 
+/// A 6 × 5 m room of type `room` with `sofa` alone in it and a person of `stature` (m) lying along
+/// world +x (head west), pelvis at `at`, on its seat; the sofa holds them. For tests of the steps that fit sofas to sleepers.
+#[cfg(test)]
+pub(super) fn sofa_with_sleeper(
+    room: crate::scene::RoomType,
+    sofa: crate::scene::Object,
+    stature: f64,
+    at: glam::DVec2,
+) -> (Scene, Occupancy) {
+    use crate::geom::yaw_facing;
+    use crate::human::{Body, Motion, lie};
+    use crate::scene::Action;
+    let mut scene = crate::data::generate_room(room, 3, 0, false).scene;
+    scene.floor_plan.polygon = vec![[0.0, 0.0], [6.0, 0.0], [6.0, 5.0], [0.0, 5.0]];
+    let seat = crate::furniture::template(&sofa).surface.expect("a sofa has a seat");
+    let body = Body::new(stature);
+    let mut m = Motion::new(body, 30.0);
+    m.hold(lie(&body, at, seat.height, yaw_facing(glam::DVec2::X)), 3, Action::Lie);
+    scene.humans = vec![m.into_human("h0")];
+    scene.objects = vec![sofa];
+    let mut people = Occupancy::of(&scene);
+    people.holders = vec![(0, 0)];
+    (scene, people)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

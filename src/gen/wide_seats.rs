@@ -222,22 +222,11 @@ mod tests {
     /// at x = 3, facing north, and a 1.75 m person lying along its seat's middle, centred on it,
     /// held by it.
     fn sofa_with_sleeper(room: RoomType, category: Category) -> (Scene, Occupancy) {
-        use crate::geom::yaw_facing;
-        use crate::human::lie;
-        let mut scene = generate_room(room, 3, 0, false).scene;
-        scene.floor_plan.polygon = vec![[0.0, 0.0], [6.0, 0.0], [6.0, 5.0], [0.0, 5.0]];
         let sofa = Object::standing("o0", category, [3.0, 0.46], [1.7, 0.9, 0.85]);
         let seat = template(&sofa).surface.expect("a sofa has a seat");
-        let body = Body::new(1.75);
-        let mut m = Motion::new(body, 30.0);
         // The pelvis 0.45 statures from the head: the body centred on the sofa.
         let at = DVec2::new(3.0 - 0.05 * 1.75, 0.46 + (seat.min.y + seat.max.y) * 0.5);
-        m.hold(lie(&body, at, seat.height, yaw_facing(DVec2::X)), 3, Action::Lie);
-        scene.humans = vec![m.into_human("h0")];
-        scene.objects = vec![sofa];
-        let mut people = Occupancy::of(&scene);
-        people.holders = vec![(0, 0)];
-        (scene, people)
+        crate::generator::occupancy::sofa_with_sleeper(room, sofa, 1.75, at)
     }
 
     /// The world x range of the joints of the scene's first person.
