@@ -49,11 +49,7 @@ pub(super) fn trim_deep_seats(scene: &mut Scene, people: &Occupancy) -> usize {
                 o.category = sofa;
             }
         }
-        let cut = cut.min(o.size[1] - shallowest(o.category));
-        if cut > 1e-3 {
-            trim_front(o, cut);
-            trimmed += 1;
-        }
+        trimmed += usize::from(trim_front_within_real(o, cut));
     }
     trimmed
 }
@@ -173,6 +169,16 @@ pub(super) fn trim_sofas_to_sleepers(scene: &mut Scene, people: &Occupancy) -> u
         }
     }
     trimmed
+}
+
+/// Takes `cut` (m) off `o`'s depth at its front, but no more than leaves its category's
+/// shallowest real piece; whether it took any.
+pub(super) fn trim_front_within_real(o: &mut Object, cut: f64) -> bool {
+    let cut = cut.min(o.size[1] - size_range(o.category, 1).0);
+    if cut > 1e-3 {
+        trim_front(o, cut);
+    }
+    cut > 1e-3
 }
 
 /// Takes `cut` (m) off `o`'s depth at its front (local +y), its back where it was.

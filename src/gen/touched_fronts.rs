@@ -6,10 +6,9 @@
 //! category's shallowest real piece. Nothing moves; low pieces (the palm rests on their top) are
 //! left alone.
 
-use super::deep_seats::trim_front;
+use super::deep_seats::trim_front_within_real;
 use super::occupancy::Occupancy;
 use super::polish::{local_extent, touches_front};
-use crate::furniture::size_range;
 use crate::scene::{Action, Scene};
 
 /// Trims every piece touched on its front whose touchers' pressed volumes lie behind the face.
@@ -30,11 +29,7 @@ pub(super) fn trim_touched_fronts(scene: &mut Scene, people: &Occupancy) -> usiz
         if !behind.is_finite() {
             continue;
         }
-        let cut = behind.min(o.size[1] - size_range(o.category, 1).0);
-        if cut > 1e-3 {
-            trim_front(o, cut);
-            trimmed += 1;
-        }
+        trimmed += usize::from(trim_front_within_real(o, behind));
     }
     trimmed
 }
@@ -43,6 +38,7 @@ pub(super) fn trim_touched_fronts(scene: &mut Scene, people: &Occupancy) -> usiz
 mod tests {
     use super::*;
     use crate::data::generate_room;
+    use crate::furniture::size_range;
     use crate::generator::polish_scene;
     use crate::human::{Body, Motion, Side, palm_of, touch};
     use crate::scene::{Category, Object, RoomType};

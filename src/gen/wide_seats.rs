@@ -106,11 +106,15 @@ pub(super) fn widen_for_people(scene: &mut Scene, people: &Occupancy) -> usize {
 /// The joints of `contact`'s person over its span, each with the radius of its thickest bone.
 fn body_points(scene: &Scene, contact: &ContactBox) -> Vec<(DVec3, f64)> {
     let Some(h) = scene.humans.iter().find(|h| h.id == contact.human) else { return Vec::new() };
-    let bones = &h.skeleton.bones;
-    let radius = |j: usize| bones.iter().filter(|b| b.a == j || b.b == j).map(|b| b.radius).fold(0.0, f64::max);
+    let mut radius = vec![0.0f64; h.skeleton.joints.len()];
+    for b in &h.skeleton.bones {
+        for j in [b.a, b.b] {
+            radius[j] = radius[j].max(b.radius);
+        }
+    }
     let [start, end] = contact.frames;
     (start..end.min(h.frames.len()))
-        .flat_map(|f| (0..h.skeleton.joints.len()).map(move |j| (h.joint_at(f, j), radius(j))))
+        .flat_map(|f| radius.iter().enumerate().map(move |(j, &r)| (h.joint_at(f, j), r)))
         .collect()
 }
 
