@@ -87,7 +87,7 @@ fn guidance_batch(cfg: &ModelConfig) -> (Vec<Scene>, Bounds, Tensor) {
     let mut rng = Rng::new(3);
     let mut all = Vec::new();
     for s in &scenes {
-        let window = shade_sim::geom::RoomWindow::for_room(s.room_type, &s.floor_plan.polygon());
+        let window = s.room_window();
         let (t, _) = tokens::encode(s, window.center, &bounds, cfg);
         all.extend(t.into_iter().map(|v| v + 0.05 * rng.normal() as f32));
     }

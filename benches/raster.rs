@@ -29,7 +29,7 @@ fn bench(c: &mut Criterion) {
     let scenes = common::named_scenes("scenes/examples");
     let (name, scene) = &scenes[0];
     let polygon = scene.floor_plan.polygon();
-    let window = RoomWindow::for_room(scene.room_type, &polygon);
+    let window = RoomWindow::around(scene.room_type.window_side(), &polygon);
     c.bench_function(&format!("free_space_mask/{name}"), |b| b.iter(|| free_space_mask(black_box(scene), &window)));
     c.bench_function(&format!("floor_mask/{name}"), |b| b.iter(|| Mask::of_polygon(&window, black_box(&polygon))));
     c.bench_function(&format!("contact_boxes/{name}"), |b| {

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The model card's test-split metrics: one sample per test input (seed 0) with the shipped models
 # (embedded in the binary), unguided, with the three spatial terms (`all`) and with the default
-# guidance (`all,polish`: the `all` samples polished, which `shade-sim polish` reproduces exactly),
+# pipeline (`all` guidance and repair: the `all` samples repaired, which `shade-sim repair` reproduces exactly),
 # and `shade-sim eval` (with physics) against the calibrated dataset.
 # Usage: bash scripts/eval_models.sh [DATA_DIR] [OUT_DIR] [ROOMS…]   (defaults: data out/eval, all rooms)
 set -euo pipefail
@@ -16,13 +16,13 @@ for room in "${rooms[@]}"; do
     for guidance in none all; do
         rm -rf "$out/$room/$guidance"
         start=$(date +%s.%N)
-        $bin --no-progress -q generate --input "$data/$room/test" --out "$out/$room/$guidance" --seed 0 --guidance "$guidance"
+        $bin --no-progress -q generate --input "$data/$room/test" --out "$out/$room/$guidance" --seed 0 --guidance "$guidance" --no-repair
         printf '%s %-4s: %d scenes in %.1f s\n' "$room" "$guidance" "$(ls "$out/$room/$guidance" | wc -l)" \
             "$(echo "$(date +%s.%N) - $start" | bc)" >&2
     done
-    rm -rf "$out/$room/all+polish"
-    $bin --no-progress -q polish "$out/$room/all" --out "$out/$room/all+polish"
+    rm -rf "$out/$room/all+repair"
+    $bin --no-progress -q repair "$out/$room/all" --out "$out/$room/all+repair"
     echo "## $room"
-    $bin --no-progress eval --pred "$out/$room/none" "$out/$room/all" "$out/$room/all+polish" --ref "$data/$room" \
+    $bin --no-progress eval --pred "$out/$room/none" "$out/$room/all" "$out/$room/all+repair" --ref "$data/$room" \
         --out "$out/$room.json"
 done

@@ -10,6 +10,7 @@ use clap::Args;
 use rayon::prelude::*;
 use shade_sim::export::{MjcfOptions, render_plan, scene_glb, scene_mjcf};
 use shade_sim::generator::{Generator, shipped_model};
+use shade_sim::pipeline::{LayoutOptions, make_layouts};
 use shade_sim::scene::{RoomType, Scene, write_atomic};
 use shade_sim::sim::{CheckConfig, check_scene};
 use std::path::PathBuf;
@@ -31,6 +32,8 @@ pub struct DemoArgs {
     pub seed: u64,
     #[command(flatten)]
     pub guidance: super::generate::GuidanceArgs,
+    #[command(flatten)]
+    pub repair: super::generate::RepairFlags,
 }
 
 pub fn run(args: &DemoArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
@@ -38,7 +41,13 @@ pub fn run(args: &DemoArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     anyhow::ensure!(args.samples > 0, "--samples: must be at least 1");
     let files = super::eval::scene_files(&args.inputs)?;
     let inputs: Vec<Scene> = files.iter().map(Scene::load).collect::<Result<_, _>>()?;
-    let guidance = args.guidance.config()?;
+    let opts = LayoutOptions {
+        samples: args.samples,
+        seed: args.seed,
+        guidance: args.guidance.config()?,
+        repair: args.repair.config()?,
+        ..LayoutOptions::default()
+    };
     std::fs::create_dir_all(&args.out).with_context(|| format!("{}: cannot create folder", args.out.display()))?;
 
     let bar = super::progress::bar(global, (inputs.len() * args.samples) as u64, "generate");
@@ -51,12 +60,9 @@ pub fn run(args: &DemoArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
         let generator = Generator::new(shipped_model(room)?);
         let batch: Vec<Scene> = which.iter().map(|&i| inputs[i].clone()).collect();
         let before = bar.position();
-        let mut factory = super::generate::guidance_factory(&generator, guidance.clone());
-        let out = generator.generate_with(&batch, args.samples, args.seed, &mut factory, &mut |done| {
-            bar.set_position(before + done as u64)
-        })?;
-        for (&i, scenes) in which.iter().zip(out) {
-            generated[i] = scenes;
+        let out = make_layouts(&generator, &batch, &opts, &mut |done| bar.set_position(before + done as u64))?;
+        for (&i, layouts) in which.iter().zip(out.kept) {
+            generated[i] = layouts.into_iter().map(|l| l.scene).collect();
         }
     }
     bar.finish_and_clear();

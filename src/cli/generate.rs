@@ -7,9 +7,10 @@ use super::scene_rows::{SceneRow, table};
 use super::{ExitStatus, GlobalArgs};
 use anyhow::Context;
 use clap::Args;
-use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig, GuidanceFactory, shipped_model};
+use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig, shipped_model};
+use shade_sim::pipeline::{Layout, LayoutOptions, make_layouts};
+use shade_sim::repair::{RepairConfig, RepairTotals};
 use shade_sim::scene::{RoomType, Scene};
-use shade_sim::sim::{CheckConfig, CheckReport, check_scene};
 use std::path::{Path, PathBuf};
 
 #[derive(Debug, Args)]
@@ -31,6 +32,8 @@ pub struct GenerateArgs {
     pub model: Option<PathBuf>,
     #[command(flatten)]
     pub guidance: GuidanceArgs,
+    #[command(flatten)]
+    pub repair: RepairFlags,
     /// Keep only layouts that pass `check`, resampling (new seeds) until each input has --samples
     /// of them or --attempts rounds are spent; exit 1 if an input got none.
     #[arg(long)]
@@ -44,12 +47,37 @@ pub struct GenerateArgs {
     pub no_empty_projection: bool,
 }
 
+/// Repair flags (shared with `demo`).
+#[derive(Debug, Clone, Args)]
+pub struct RepairFlags {
+    /// Keep the sampled layouts as they are: no repair after sampling.
+    #[arg(long)]
+    pub no_repair: bool,
+    /// A JSON repair config (which steps run, their settings; docs/FORMAT.md); default: every step
+    /// with its documented defaults.
+    #[arg(long, conflicts_with = "no_repair")]
+    pub repair_config: Option<PathBuf>,
+}
+
+impl RepairFlags {
+    /// The repair these flags ask for (`None`: no repair).
+    pub fn config(&self) -> anyhow::Result<Option<RepairConfig>> {
+        if self.no_repair {
+            return Ok(None);
+        }
+        Ok(Some(match &self.repair_config {
+            Some(file) => RepairConfig::load(file)?,
+            None => RepairConfig::default(),
+        }))
+    }
+}
+
 /// Collision guidance flags (shared with `demo`).
 #[derive(Debug, Clone, Args)]
 pub struct GuidanceArgs {
-    /// Guidance terms: none, all (= mot,bound,obj), or a list of mot, bound, obj, phys (physics
-    /// feedback in the last steps) and polish (exact corrections of the decoded layout).
-    #[arg(long, default_value = "all,polish")]
+    /// Guidance terms during sampling: none, all (= mot,bound,obj), or a list of mot, bound, obj and
+    /// phys (physics feedback in the last steps). Repair after sampling is separate (--no-repair).
+    #[arg(long, default_value = "all")]
     pub guidance: String,
     /// Step size γ of the guidance (default: the tuned value in docs/RESULTS.md).
     #[arg(long)]
@@ -78,12 +106,6 @@ impl GuidanceArgs {
     }
 }
 
-/// The per-batch guidance factory of `cfg` for `generator`'s model.
-pub fn guidance_factory(generator: &Generator, cfg: GuidanceConfig) -> Box<GuidanceFactory> {
-    let meta = generator.checkpoint.meta.clone();
-    Box::new(move |scenes: &[&Scene]| cfg.for_batch(&meta.model, &meta.bounds, scenes))
-}
-
 /// The model in `dir`, or the shipped one for `room`; fails when its room type differs.
 pub fn load_model(dir: Option<&Path>, room: RoomType, input: &Path) -> anyhow::Result<Generator> {
     let checkpoint = match dir {
@@ -95,61 +117,19 @@ pub fn load_model(dir: Option<&Path>, room: RoomType, input: &Path) -> anyhow::R
     Ok(Generator::new(checkpoint))
 }
 
-/// The layouts kept for each input, how many were sampled and how many passed the check.
-struct Sampled {
-    kept: Vec<Vec<(Scene, Option<CheckReport>)>>,
-    sampled: usize,
-    accepted: usize,
-}
-
-/// Samples `args.samples` layouts for each of `inputs` (one room type), resampling with new seeds
-/// under --require-clean; `progress` gets the number of layouts done.
-fn sample_inputs(
-    generator: &Generator,
-    inputs: &[Scene],
-    args: &GenerateArgs,
-    guidance: &GuidanceConfig,
-    progress: &mut dyn FnMut(usize),
-) -> anyhow::Result<Sampled> {
-    let mut factory = guidance_factory(generator, guidance.clone());
-    let rounds = if args.require_clean { args.attempts.max(1) } else { 1 };
-    let check = CheckConfig::default();
-    let mut s = Sampled { kept: vec![Vec::new(); inputs.len()], sampled: 0, accepted: 0 };
-    for round in 0..rounds {
-        let wanted: Vec<usize> = (0..inputs.len()).filter(|&i| s.kept[i].len() < args.samples).collect();
-        if wanted.is_empty() {
-            break;
-        }
-        let batch: Vec<Scene> = wanted.iter().map(|&i| inputs[i].clone()).collect();
-        // Round 0 uses the seed itself, so a clean first sample is the same as without the flag.
-        let seed = args.seed.wrapping_add(round as u64 * 1_000_003);
-        let accepted = s.accepted;
-        let out = generator.generate_with(&batch, args.samples, seed, &mut factory, &mut |done| {
-            progress(accepted + done.min(args.samples * inputs.len()))
-        })?;
-        for (&i, scenes) in wanted.iter().zip(out) {
-            for scene in scenes {
-                s.sampled += 1;
-                if !args.require_clean {
-                    s.kept[i].push((scene, None));
-                    continue;
-                }
-                let report = check_scene(&scene, &check);
-                if report.is_clean() && s.kept[i].len() < args.samples {
-                    s.accepted += 1;
-                    s.kept[i].push((scene, Some(report)));
-                }
-            }
-        }
-    }
-    Ok(s)
-}
-
 pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     anyhow::ensure!(args.samples > 0, "--samples: must be at least 1");
     let files = if args.input.is_dir() { super::eval::scene_files(&args.input)? } else { vec![args.input.clone()] };
     let inputs: Vec<Scene> = files.iter().map(Scene::load).collect::<Result<_, _>>()?;
-    let guidance = args.guidance.config()?;
+    let opts = LayoutOptions {
+        samples: args.samples,
+        seed: args.seed,
+        guidance: args.guidance.config()?,
+        repair: args.repair.config()?,
+        require_clean: args.require_clean,
+        attempts: args.attempts,
+        ..LayoutOptions::default()
+    };
     // One model per room type, in the order the types first appear (with --model: one type only).
     let mut rooms: Vec<RoomType> = Vec::new();
     for s in &inputs {
@@ -177,12 +157,11 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
         })
         .collect::<anyhow::Result<_>>()?;
     let bar = super::progress::bar(global, (inputs.len() * args.samples) as u64, "generate");
-    let mut kept: Vec<Vec<(Scene, Option<CheckReport>)>> = vec![Vec::new(); inputs.len()];
+    let mut kept: Vec<Vec<Layout>> = vec![Vec::new(); inputs.len()];
     let (mut sampled, mut accepted, mut offset) = (0usize, 0usize, 0usize);
     for (_, generator, members) in &generators {
         let group: Vec<Scene> = members.iter().map(|&i| inputs[i].clone()).collect();
-        let s =
-            sample_inputs(generator, &group, args, &guidance, &mut |done| bar.set_position((offset + done) as u64))?;
+        let s = make_layouts(generator, &group, &opts, &mut |done| bar.set_position((offset + done) as u64))?;
         offset += members.len() * args.samples;
         (sampled, accepted) = (sampled + s.sampled, accepted + s.accepted);
         for (&i, k) in members.iter().zip(s.kept) {
@@ -192,14 +171,17 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
     bar.finish_and_clear();
     std::fs::create_dir_all(&args.out).with_context(|| format!("{}: cannot create folder", args.out.display()))?;
     let mut rows = Vec::new();
+    let mut repaired = Vec::new();
     for (input, samples) in files.iter().zip(&kept) {
         let stem = input.file_stem().map_or("scene".into(), |s| s.to_string_lossy().into_owned());
-        for (k, (scene, report)) in samples.iter().enumerate() {
+        for (k, layout) in samples.iter().enumerate() {
             let file = args.out.join(format!("{stem}_{k}.json"));
-            scene.save(&file)?;
-            rows.push(SceneRow::of(&file.display().to_string(), scene, report.as_ref()));
+            layout.scene.save(&file)?;
+            rows.push(SceneRow::of(&file.display().to_string(), &layout.scene, layout.check.as_ref()));
+            repaired.extend(layout.repair.as_ref().map(|r| (file.display().to_string(), r.clone())));
         }
     }
+    let repair_totals = (!repaired.is_empty()).then(|| repaired.iter().map(|(_, r)| r.totals()).sum::<RepairTotals>());
     let empty = kept.iter().filter(|k| k.is_empty()).count();
     let acceptance = args.require_clean.then(|| accepted as f64 / sampled.max(1) as f64);
     if global.json {
@@ -207,6 +189,12 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
             "input": args.input,
             "seed": args.seed,
             "scenes": rows,
+            "guidance": opts.guidance,
+            "repair": opts.repair.as_ref().map(|cfg| serde_json::json!({
+                "config": cfg,
+                "totals": repair_totals,
+                "scenes": repaired.iter().map(|(f, r)| serde_json::json!({"file": f, "steps": r.steps})).collect::<Vec<_>>(),
+            })),
             "sampled": sampled,
             "acceptance_rate": acceptance,
             "inputs_without_clean_layout": args.require_clean.then_some(empty),

@@ -13,8 +13,8 @@ mod generate;
 mod import;
 mod inspect;
 mod output;
-mod polish;
 mod progress;
+mod repair;
 mod scene_rows;
 mod synth;
 mod train;
@@ -102,9 +102,9 @@ pub enum Command {
     Generate(generate::GenerateArgs),
     /// Train the SHADE denoiser on a calibrated dataset (resumable; checkpoints on Ctrl-C).
     Train(train::TrainArgs),
-    /// Small exact corrections of layouts: furniture under its contact humans, inside the walls,
-    /// apart, off walking paths.
-    Polish(polish::PolishArgs),
+    /// Repair layouts: small exact corrections (furniture under its contact humans, inside the
+    /// walls, apart, off walking paths), step by step as a repair config says.
+    Repair(repair::RepairArgs),
     /// Convert the licensed MIME release of 3D-FRONT HUMAN (folders of boxes.npz) to shade-scene/1.
     #[command(name = "import-3dfront-human")]
     Import3dfrontHuman(import::ImportArgs),
@@ -144,7 +144,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
         Command::Demo(args) => demo::run(args, &cli.global),
         Command::Generate(args) => generate::run(args, &cli.global),
         Command::Train(args) => train::run(args, &cli.global),
-        Command::Polish(args) => polish::run(args, &cli.global),
+        Command::Repair(args) => repair::run(args, &cli.global),
         Command::Import3dfrontHuman(args) => import::run(args, &cli.global),
     };
     match result {

@@ -7,8 +7,9 @@ use super::{ExitStatus, GlobalArgs};
 use clap::Args;
 use indicatif::ProgressBar;
 use shade_sim::data::read_stats;
+use shade_sim::export::{LossPoint, render_loss_png};
 use shade_sim::generator::train::LogLine;
-use shade_sim::generator::{ModelConfig, TrainObserver, TrainOptions, train};
+use shade_sim::generator::{GenError, ModelConfig, TrainObserver, TrainOptions, train};
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -55,7 +56,8 @@ pub struct TrainArgs {
     pub category_balance: f64,
 }
 
-struct Bar(ProgressBar);
+/// The progress bar, and the model folder where each checkpoint's `loss.png` goes.
+struct Bar(ProgressBar, PathBuf);
 
 impl TrainObserver for Bar {
     fn started(&mut self, step: u64, total: u64, scenes: usize, parameters: usize) {
@@ -70,8 +72,12 @@ impl TrainObserver for Bar {
         self.0.set_message(format!("train loss {:.4}{val}", line.loss));
         tracing::info!(step = line.step, loss = line.loss, val = ?line.val_loss, "log");
     }
-    fn checkpointed(&mut self, step: u64) {
+    fn checkpointed(&mut self, step: u64, log: &[LogLine]) -> Result<(), GenError> {
         tracing::info!("checkpoint at step {step}");
+        let points: Vec<LossPoint> =
+            log.iter().map(|l| LossPoint { step: l.step, loss: l.loss, val_loss: l.val_loss }).collect();
+        let path = self.1.join("loss.png");
+        render_loss_png(&points, &path).map_err(|e| GenError::io(path, e))
     }
 }
 
@@ -118,7 +124,7 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
         eprintln!("stopping: writing a checkpoint at the next log step (Ctrl-C again to quit now)");
     });
     let bar = super::progress::bar(global, args.steps, "train");
-    let outcome = train(&opts, &stop, &mut Bar(bar.clone()))?;
+    let outcome = train(&opts, &stop, &mut Bar(bar.clone(), args.out.clone()))?;
     bar.finish_and_clear();
     if global.json {
         print_json(&serde_json::json!({

@@ -16,10 +16,10 @@
 use super::Rng;
 use super::layout::Placed;
 use super::people::{contact_pose, translate};
-use crate::eval::{FurnitureField, contact_iou};
 use crate::furniture::template;
 use crate::geom::OBox;
 use crate::human::{Motion, SurfaceSampler, contact_boxes, round_mm};
+use crate::measure::{FurnitureField, contact_iou};
 use crate::scene::{Action, Group, Human, Object, Scene};
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
@@ -169,7 +169,7 @@ fn fix_translation(h: &mut Human, judge: &Judge) -> (Option<usize>, DVec3, bool,
     let joints: Vec<DVec3> = h.frame(f).collect();
     let sampler = SurfaceSampler::new(&h.skeleton, &joints, SEARCH_POINTS);
     let points = sampler.points(&h.skeleton, &joints);
-    let scale = crate::eval::SURFACE_POINTS as f64 / points.len().max(1) as f64;
+    let scale = crate::measure::SURFACE_POINTS as f64 / points.len().max(1) as f64;
     // E_pen (scaled to 1,000 points), or infinity when any point is deeper than the physics
     // check's tolerance: a resting body may press into a cushion, not sink through it.
     let penetration = |t: DVec3| -> f64 {
@@ -249,7 +249,7 @@ pub fn calibrate_scene(scene: &Scene, rng: &mut Rng) -> SceneCalibration {
     let mut records = Vec::new();
     for h in out.humans.iter_mut() {
         let Some((action_before, b)) = judge.contact(h) else { continue };
-        let before = (crate::eval::human_penetration(h, &judge.field), contact_iou(&b, &scene.objects));
+        let before = (crate::measure::human_penetration(h, &judge.field), contact_iou(&b, &scene.objects));
         let original = h.clone();
         // 1. Translation modification.
         let (mut object, mut t, mut fixed, mut problem) = fix_translation(h, &judge);
@@ -294,7 +294,7 @@ pub fn calibrate_scene(scene: &Scene, rng: &mut Rng) -> SceneCalibration {
         }
         let after_box = judge.contact(h).map(|(_, b)| b);
         let after = (
-            crate::eval::human_penetration(h, &judge.field),
+            crate::measure::human_penetration(h, &judge.field),
             after_box.map_or(0.0, |b| contact_iou(&b, &scene.objects)),
         );
         fixed = fixed && after.0 < SAFE_PENETRATION * 1.5 && after.1 >= iou_target(action) - 1e-9;

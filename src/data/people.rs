@@ -9,10 +9,10 @@
 
 use super::Rng;
 use super::layout::{FreeGrid, Layout, Placed};
-use crate::eval::{FurnitureField, human_penetration};
 use crate::furniture::template_of;
 use crate::geom::{OBox, Polyline, facing, yaw_facing};
 use crate::human::{Body, KNEE_OVERHANG, Motion, Pose, Side, lie, sit, touch};
+use crate::measure::{FurnitureField, human_penetration};
 use crate::scene::{Action, Category, Group, Human, Object};
 use glam::{DVec2, DVec3};
 use std::collections::VecDeque;

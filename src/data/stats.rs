@@ -4,7 +4,6 @@
 //! The bounds are what the model scales tokens by: object centres relative to the room window's
 //! centre, full sizes, over the split's objects.
 
-use crate::geom::RoomWindow;
 use crate::scene::{Category, RoomType, Scene};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -46,7 +45,7 @@ impl SplitStats {
             self.object_count_histogram.resize(n + 1, 0);
         }
         self.object_count_histogram[n] += 1;
-        let window = RoomWindow::for_room(scene.room_type, &scene.floor_plan.polygon());
+        let window = scene.room_window();
         for o in &scene.objects {
             *self.category_counts.entry(o.category).or_insert(0) += 1;
             let rel = [o.center[0] - window.center.x, o.center[1] - window.center.y, o.center[2]];

@@ -30,7 +30,7 @@ impl LayoutCounts {
     /// The counts of one scene.
     pub fn of(scene: &Scene) -> LayoutCounts {
         let polygon = scene.floor_plan.polygon();
-        let window = RoomWindow::for_room(scene.room_type, &polygon);
+        let window = RoomWindow::around(scene.room_type.window_side(), &polygon);
         let free = free_space_mask(scene, &window);
         let outside_floor = Mask::of_polygon(&window, &polygon).inverted();
         let mut covered = Mask::new();

@@ -3,13 +3,11 @@
 //! rates.
 
 mod ckl_floor;
-mod contact;
 mod layout_metrics;
-mod penetration;
 mod table;
 
+pub use crate::measure::{FurnitureField, SURFACE_POINTS, human_penetration, scene_penetration};
+pub use crate::measure::{contact_iou, scene_contact_iou};
 pub use ckl_floor::{CklFloor, ckl_floor, contact_floor, contact_pieces};
-pub use contact::{contact_iou, scene_contact_iou};
 pub use layout_metrics::{LayoutCounts, category_frequencies, category_kl, frequencies_of};
-pub use penetration::{FurnitureField, SURFACE_POINTS, human_penetration, scene_penetration};
 pub use table::{EvalRow, PhysicsRates, evaluate};

@@ -3,7 +3,6 @@
 
 use super::canvas::{Canvas, Color, View};
 use super::font::draw_text;
-use crate::generator::train::LogLine;
 use glam::DVec2;
 use std::path::Path;
 
@@ -14,8 +13,20 @@ const TRAIN: Color = [40, 90, 200];
 const VAL: Color = [230, 120, 20];
 const INK: Color = [30, 30, 30];
 
-/// Draws `log` into a canvas.
-pub fn loss_canvas(log: &[LogLine]) -> Canvas {
+/// One point of a training curve: the step, the training loss and, where measured, the
+/// validation loss.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LossPoint {
+    /// Optimiser step.
+    pub step: u64,
+    /// Training loss.
+    pub loss: f64,
+    /// Validation loss at this step, if measured.
+    pub val_loss: Option<f64>,
+}
+
+/// Draws the curve `log` into a canvas.
+pub fn loss_canvas(log: &[LossPoint]) -> Canvas {
     let mut canvas = Canvas::new(WIDTH, HEIGHT, [255, 255, 255]);
     // World coordinates are pixels with y up.
     let view = View { top_left: DVec2::new(0.0, HEIGHT as f64), scale: 1.0, offset: DVec2::ZERO };
@@ -55,6 +66,6 @@ pub fn loss_canvas(log: &[LogLine]) -> Canvas {
 ///
 /// # Errors
 /// Any I/O error of writing `path`.
-pub fn render_loss_png(log: &[LogLine], path: &Path) -> std::io::Result<()> {
+pub fn render_loss_png(log: &[LossPoint], path: &Path) -> std::io::Result<()> {
     loss_canvas(log).save_png(path)
 }

@@ -19,7 +19,7 @@ pub use canvas::{Canvas, Color, View, png_bytes};
 pub use font::{draw_text, text_width};
 pub use gltf::scene_glb;
 pub use humans_png::{action_color, render_humans, render_humans_sized};
-pub use loss_png::{loss_canvas, render_loss_png};
+pub use loss_png::{LossPoint, loss_canvas, render_loss_png};
 pub use mask_png::{mask_png, save_mask_png};
 pub use mesh::TriMesh;
 pub use mjcf::{MjcfOptions, MocapMotion, PAIR_MARGIN, mocap_motion, part_names, scene_mjcf};

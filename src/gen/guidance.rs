@@ -20,11 +20,13 @@ use super::tokens::decode_slots;
 use super::{Bounds, GenError, Guidance, ModelConfig};
 use crate::geom::{Mask, OBox, RoomWindow, iou_3d};
 use crate::human::Conditions;
+use crate::physics::Physics;
 use crate::scene::{Object, Scene};
 use candle_core::Tensor;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
+use std::sync::Arc;
 
 /// Weights of the terms and the step.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -49,9 +51,6 @@ pub struct GuidanceConfig {
     /// …that are multiples of `phys_every`.
     #[serde(default)]
     pub phys_every: usize,
-    /// Rounds of polishing after the last step (`polish_scene`; 0 = off).
-    #[serde(default)]
-    pub polish: usize,
 }
 
 impl GuidanceConfig {
@@ -66,17 +65,14 @@ impl GuidanceConfig {
             phys: 0.0,
             phys_until: 20,
             phys_every: 4,
-            polish: 0,
         }
     }
 
     /// The weight `phys` takes when the term is asked for.
     pub const PHYS_WEIGHT: f64 = 1.0;
 
-    /// The rounds `polish` takes when it is asked for.
-    pub const POLISH_ROUNDS: usize = 60;
-
-    /// Only the named terms (`mot`, `bound`, `obj`, `all`, `phys`, `polish`, `none`), comma-separated.
+    /// Only the named terms (`mot`, `bound`, `obj`, `all`, `phys`, `none`), comma-separated. Repair
+    /// after sampling is not a guidance term: it is `repair`'s job.
     pub fn parse(list: &str) -> Result<GuidanceConfig, String> {
         let mut cfg = GuidanceConfig { motion: 0.0, bound: 0.0, object: 0.0, ..Self::all() };
         let full = Self::all();
@@ -88,9 +84,8 @@ impl GuidanceConfig {
                 "bound" => cfg.bound = full.bound,
                 "obj" | "object" => cfg.object = full.object,
                 "phys" => cfg.phys = Self::PHYS_WEIGHT,
-                "polish" => cfg.polish = Self::POLISH_ROUNDS,
                 other => {
-                    return Err(format!("unknown guidance term {other:?} (none, all, mot, bound, obj, phys, polish)"));
+                    return Err(format!("unknown guidance term {other:?} (none, all, mot, bound, obj, phys)"));
                 }
             }
         }
@@ -102,39 +97,36 @@ impl GuidanceConfig {
         self.scale > 0.0 && (self.motion > 0.0 || self.bound > 0.0 || self.object > 0.0)
     }
 
-    /// The guidance of one batch of `scenes`: the spatial terms, then the physics feedback; `None`
-    /// when everything is off.
-    pub fn for_batch(&self, model: &ModelConfig, bounds: &Bounds, scenes: &[&Scene]) -> Option<Box<dyn Guidance>> {
+    /// The guidance of one batch of `scenes`: the spatial terms, then the physics feedback (asking
+    /// `physics`); `None` when everything is off.
+    pub fn for_batch(
+        &self,
+        model: &ModelConfig,
+        bounds: &Bounds,
+        scenes: &[&Scene],
+        physics: &Arc<dyn Physics>,
+    ) -> Option<Box<dyn Guidance>> {
         let mut chain: Vec<Box<dyn Guidance>> = Vec::new();
         if self.is_active() {
             chain.push(Box::new(SpatialGuidance::new(self.clone(), model, bounds, scenes)));
         }
         if self.phys > 0.0 {
-            let phys = super::PhysicsGuidance::new(model, bounds, scenes, self.phys, self.phys_until, self.phys_every);
+            let phys = super::PhysicsGuidance::new(
+                model,
+                bounds,
+                scenes,
+                self.phys,
+                self.phys_until,
+                self.phys_every,
+                physics.clone(),
+            );
             chain.push(Box::new(phys));
-        }
-        if self.polish > 0 {
-            chain.push(Box::new(Polish(self.polish)));
         }
         match chain.len() {
             0 => None,
             1 => chain.pop(),
             _ => Some(Box::new(super::phys_guidance::Chain(chain))),
         }
-    }
-}
-
-/// Polishing as a guidance: nothing during sampling, `polish_scene` on every decoded scene.
-#[derive(Debug, Clone, Copy)]
-struct Polish(usize);
-
-impl Guidance for Polish {
-    fn guide(&mut self, x0: &Tensor, _t: usize) -> Result<Tensor, GenError> {
-        Ok(x0.clone())
-    }
-
-    fn finish(&mut self, _item: usize, scene: &mut Scene) {
-        super::polish_scene(scene, self.0);
     }
 }
 
@@ -499,10 +491,8 @@ mod tests {
         let p = GuidanceConfig::parse("all,phys").unwrap();
         assert!(p.is_active() && p.phys > 0.0);
         assert!(!GuidanceConfig::parse("phys").unwrap().is_active());
-        // Polishing is off unless named, and the default command line names it.
-        assert_eq!(GuidanceConfig::parse("all").unwrap().polish, 0);
-        let d = GuidanceConfig::parse("all,polish").unwrap();
-        assert_eq!((d.polish, d.phys), (GuidanceConfig::POLISH_ROUNDS, 0.0));
+        // Repair is not a guidance term.
+        assert!(GuidanceConfig::parse("all,polish").unwrap_err().contains("polish"));
     }
 }
 

@@ -7,36 +7,22 @@
 //! Guidance terms themselves, physics and metrics live elsewhere.
 
 mod adamw;
-mod bed_swap;
 pub mod checkpoint;
-mod clearance;
-mod completion;
 mod config;
 mod dataset;
-mod deep_seats;
 mod error;
 mod features;
 mod generate;
 pub mod guidance;
 pub mod inference;
-mod inside;
-mod left_out;
 mod model;
-mod occupancy;
-mod off_bodies;
-mod overlaps;
 mod params;
 pub mod phys_guidance;
-mod polish;
-mod relocate;
 mod sampler;
 mod schedule;
 mod shipped;
 pub mod tokens;
-mod touched_fronts;
 pub mod train;
-mod walls;
-mod wide_seats;
 
 pub use adamw::{AdamW, AdamWConfig};
 pub use checkpoint::{Checkpoint, CheckpointMeta, TrainingInfo};
@@ -50,7 +36,6 @@ pub use inference::{FastDenoiser, PreparedBatch};
 pub use model::{CondTensors, Denoiser, time_features};
 pub use params::Params;
 pub use phys_guidance::{PhysicsGuidance, physics_displacements};
-pub use polish::{PolishReport, polish_scene};
 pub use sampler::{Guidance, empty_projection_steps, sample};
 pub use schedule::Schedule;
 pub use shipped::{shipped_model, shipped_rooms};

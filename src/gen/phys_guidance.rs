@@ -3,7 +3,8 @@
 //! geometry find is turned into displacements of the offending objects' centres:
 //!
 //! - a bone penetrating an object pushes it horizontally away from the bone by the depth
-//!   (averaged over the object's contacts, [`rapier_pushes`]);
+//!   (averaged over the object's contacts, [`Physics::pushes`], which `sim` answers with a
+//!   Rapier replay);
 //! - two objects that overlap push each other apart along the line between their centres, each by
 //!   half the square root of their footprint overlap;
 //! - a sitting or lying human with no support (contact IoU below one half) pulls the nearest object
@@ -14,23 +15,23 @@
 
 use super::tokens::decode_slots;
 use super::{Bounds, GenError, Guidance, ModelConfig};
-use crate::eval::contact_iou;
 use crate::geom::{footprint_intersection_area, intersection_volume};
 use crate::human::Conditions;
+use crate::measure::contact_iou;
+use crate::physics::Physics;
 use crate::scene::{Action, Scene};
-use crate::sim::rapier_pushes;
 use candle_core::Tensor;
 use glam::DVec2;
 use rayon::prelude::*;
+use std::sync::Arc;
 
-/// Penetrations shallower than this are not pushed (m), as in the check.
-pub const PHYS_TOLERANCE: f64 = 0.02;
+pub use crate::physics::PHYS_TOLERANCE;
 
 /// Displacements (m) of each object of `scene` (by index) that would fix what the replay finds.
-pub fn physics_displacements(scene: &Scene) -> Vec<DVec2> {
+pub fn physics_displacements(scene: &Scene, physics: &dyn Physics) -> Vec<DVec2> {
     let n = scene.objects.len();
     let mut moves = vec![DVec2::ZERO; n];
-    for (i, push) in rapier_pushes(scene, PHYS_TOLERANCE) {
+    for (i, push) in physics.pushes(scene, PHYS_TOLERANCE) {
         moves[i] += push;
     }
     let boxes: Vec<_> = scene.objects.iter().map(|o| o.obox()).collect();
@@ -63,8 +64,9 @@ pub fn physics_displacements(scene: &Scene) -> Vec<DVec2> {
 }
 
 /// The physics-feedback guidance of one batch.
-#[derive(Debug, Clone)]
+#[derive(Clone)]
 pub struct PhysicsGuidance {
+    physics: Arc<dyn Physics>,
     model: ModelConfig,
     bounds: Bounds,
     scenes: Vec<Scene>,
@@ -85,8 +87,10 @@ impl PhysicsGuidance {
         weight: f64,
         until_step: usize,
         every: usize,
+        physics: Arc<dyn Physics>,
     ) -> PhysicsGuidance {
         PhysicsGuidance {
+            physics,
             model: model.clone(),
             bounds: bounds.clone(),
             scenes: scenes.iter().map(|s| (*s).clone()).collect(),
@@ -113,11 +117,11 @@ impl Guidance for PhysicsGuidance {
             .par_chunks_exact_mut(per_item)
             .zip(&self.scenes)
             .map(|(tokens, input)| {
-                let center = crate::geom::RoomWindow::for_room(input.room_type, &input.floor_plan.polygon()).center;
+                let center = input.room_window().center;
                 let slots = decode_slots(tokens, center, input.floor_plan.height, &self.bounds, &self.model);
                 let mut scene = input.clone();
                 scene.objects = slots.iter().map(|(_, o)| o.clone()).collect();
-                let moves = physics_displacements(&scene);
+                let moves = physics_displacements(&scene, self.physics.as_ref());
                 let mut count = 0;
                 for ((slot, _), m) in slots.iter().zip(moves) {
                     if m == DVec2::ZERO {
@@ -165,7 +169,7 @@ mod tests {
     fn a_walker_pushes_a_chair_out_of_the_way_and_overlaps_push_apart() {
         // A calibrated room is clean: nothing moves.
         let scene = generate_room(RoomType::Dining, 3, 0, false).scene;
-        let clean = physics_displacements(&scene);
+        let clean = physics_displacements(&scene, &crate::sim::SimPhysics);
         assert!(clean.iter().all(|m| m.length() < 0.05), "{clean:?}");
         // Put a copy of an object onto a walker's path: it is pushed away from the path.
         let walker = scene.humans.iter().find(|h| h.actions.iter().any(|a| a.action == Action::Walk)).unwrap();
@@ -180,7 +184,7 @@ mod tests {
         chair.size = [0.5, 0.5, 0.9];
         chair.center = [pelvis.x + 0.15 * side.x, pelvis.y + 0.15 * side.y, 0.45];
         blocked.objects.push(chair);
-        let moves = physics_displacements(&blocked);
+        let moves = physics_displacements(&blocked, &crate::sim::SimPhysics);
         let last = *moves.last().unwrap();
         assert!(last.length() > 0.05, "{moves:?}");
         // Pushed to the side it stands on, out of the path.

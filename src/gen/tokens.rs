@@ -180,7 +180,7 @@ mod tests {
             let bounds = bounds_of(&scenes);
             let cfg = ModelConfig::tiny(room);
             for scene in &scenes {
-                let window = RoomWindow::for_room(room, &scene.floor_plan.polygon());
+                let window = RoomWindow::around(room.window_side(), &scene.floor_plan.polygon());
                 let (tokens, weights) = encode(scene, window.center, &bounds, &cfg);
                 assert_eq!(tokens.len(), cfg.slots() * cfg.token_dim());
                 assert!(tokens.iter().all(|v| (-1.0 - 1e-6..=1.0 + 1e-6).contains(v)));

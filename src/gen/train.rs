@@ -140,8 +140,11 @@ pub trait TrainObserver {
     fn started(&mut self, _step: u64, _total: u64, _train_scenes: usize, _parameters: usize) {}
     /// A log line was written.
     fn logged(&mut self, _line: &LogLine) {}
-    /// A checkpoint was written at `step`.
-    fn checkpointed(&mut self, _step: u64) {}
+    /// A checkpoint was written at `step`; `log` is every line logged so far (the CLI draws
+    /// `loss.png` from it). An error stops training.
+    fn checkpointed(&mut self, _step: u64, _log: &[LogLine]) -> Result<(), GenError> {
+        Ok(())
+    }
 }
 
 impl TrainObserver for () {}
@@ -260,10 +263,8 @@ pub fn train(
                 };
                 let state = StateMeta { step, adam_steps: adam.steps, seconds, val_loss, data_hash: data_hash.clone() };
                 save(&opts.out, &meta, &state, params.vars(), &adam, &ema)?;
-                crate::export::render_loss_png(&log, &opts.out.join("loss.png"))
-                    .map_err(|e| GenError::io(opts.out.join("loss.png"), e))?;
                 last_checkpoint = Instant::now();
-                observer.checkpointed(step);
+                observer.checkpointed(step, &log)?;
             }
             if stopped {
                 break;

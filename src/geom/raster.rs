@@ -5,7 +5,6 @@
 //! visited, so a footprint costs its own area, not the whole grid.
 
 use super::{OBox, Polygon, point_segment_distance};
-use crate::scene::RoomType;
 use glam::DVec2;
 use std::ops::Range;
 
@@ -22,10 +21,11 @@ pub struct RoomWindow {
 }
 
 impl RoomWindow {
-    /// The window of a room: the room type's side, centred on the floor plan's bounding-box centre.
-    pub fn for_room(room: RoomType, floor: &Polygon) -> RoomWindow {
+    /// A window `side` metres wide centred on the floor plan's bounding-box centre (a scene's
+    /// is `Scene::room_window`, its side the room type's).
+    pub fn around(side: f64, floor: &Polygon) -> RoomWindow {
         let (min, max) = floor.bounds();
-        RoomWindow { center: (min + max) * 0.5, side: room.window_side() }
+        RoomWindow { center: (min + max) * 0.5, side }
     }
 
     /// Side of one pixel in metres.

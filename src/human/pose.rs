@@ -130,7 +130,7 @@ pub const SEAT_BONES: [(Joint, Joint); 5] = [
 ];
 
 /// How far a sitter's knees reach past the front edge of a seat deeper than their thighs are long
-/// (m): the lower legs hang clear of it. The data seats people so; polishing keeps it.
+/// (m): the lower legs hang clear of it. The data seats people so; repair keeps it.
 pub const KNEE_OVERHANG: f64 = 0.07;
 
 /// Sitting on a seat whose top is `seat_height` above the floor: the pelvis above `at` (world xy),

@@ -6,28 +6,7 @@
 
 use crate::scene::{Bone, Skeleton};
 
-/// The joint names every skeleton must have, in the default skeleton's order.
-pub const JOINT_NAMES: [&str; 19] = [
-    "pelvis",
-    "spine",
-    "chest",
-    "neck",
-    "head",
-    "left_hip",
-    "left_knee",
-    "left_ankle",
-    "left_toe",
-    "right_hip",
-    "right_knee",
-    "right_ankle",
-    "right_toe",
-    "left_shoulder",
-    "left_elbow",
-    "left_wrist",
-    "right_shoulder",
-    "right_elbow",
-    "right_wrist",
-];
+pub use crate::scene::JOINT_NAMES;
 
 /// Index of each joint of the default skeleton.
 #[allow(missing_docs)]

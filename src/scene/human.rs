@@ -6,6 +6,29 @@ use super::Action;
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
+/// The joint names every skeleton must have, in the default skeleton's order.
+pub const JOINT_NAMES: [&str; 19] = [
+    "pelvis",
+    "spine",
+    "chest",
+    "neck",
+    "head",
+    "left_hip",
+    "left_knee",
+    "left_ankle",
+    "left_toe",
+    "right_hip",
+    "right_knee",
+    "right_ankle",
+    "right_toe",
+    "left_shoulder",
+    "left_elbow",
+    "left_wrist",
+    "right_shoulder",
+    "right_elbow",
+    "right_wrist",
+];
+
 /// A recorded or generated human motion.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -26,7 +49,7 @@ pub struct Human {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Skeleton {
-    /// Joint names; must include the 19 names of [`crate::human::JOINT_NAMES`].
+    /// Joint names; must include the 19 names of [`JOINT_NAMES`].
     pub joints: Vec<String>,
     /// Capsule bones between two joints.
     pub bones: Vec<Bone>,

@@ -18,7 +18,7 @@ mod validate;
 pub use category::{Action, Category, Group, RoomType};
 pub use error::{Problem, ProblemKind, SceneError};
 pub use floor_plan::FloorPlan;
-pub use human::{ActionSpan, Bone, Human, Skeleton};
+pub use human::{ActionSpan, Bone, Human, JOINT_NAMES, Skeleton};
 pub use io::write_atomic;
 pub use object::Object;
 pub use scene::{FORMAT, Scene};

@@ -25,6 +25,12 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// The room window the scene is rasterised in: its room type's side, centred on the floor
+    /// plan's bounding box.
+    pub fn room_window(&self) -> crate::geom::RoomWindow {
+        crate::geom::RoomWindow::around(self.room_type.window_side(), &self.floor_plan.polygon())
+    }
+
     /// An empty scene of `room_type` over `floor_plan`.
     pub fn new(room_type: RoomType, floor_plan: FloorPlan) -> Scene {
         Scene { format: FORMAT.to_string(), room_type, floor_plan, objects: Vec::new(), humans: Vec::new() }

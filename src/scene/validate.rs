@@ -3,8 +3,8 @@
 //! Unknown fields, wrong types and unknown category or action names are caught while parsing; this
 //! checks values: finiteness, positivity, the floor polygon, ids, skeletons, frames and action ranges.
 
+use super::JOINT_NAMES;
 use super::{FORMAT, Human, Problem, ProblemKind, Scene};
-use crate::human::JOINT_NAMES;
 use std::collections::HashSet;
 
 /// Smallest floor area (m²) that counts as an area.

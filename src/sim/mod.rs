@@ -7,6 +7,7 @@
 mod check;
 #[cfg(feature = "mujoco")]
 mod mujoco;
+mod physics;
 mod replay;
 mod solids;
 mod stability;
@@ -15,6 +16,7 @@ mod violation;
 pub use check::{CheckConfig, CheckReport, capsule_depth, check_scene};
 #[cfg(feature = "mujoco")]
 pub use mujoco::mujoco_replay;
+pub use physics::SimPhysics;
 pub use replay::{EngineContact, exact_contacts, rapier_pushes, rapier_replay};
 pub use solids::{Owner, Solid, furniture_solids, pose_of, wall_solids};
 pub use stability::{build_world, unstable_objects};

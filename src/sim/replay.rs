@@ -12,20 +12,7 @@ use glam::{Quat, Vec3};
 use rapier3d::prelude::*;
 use std::collections::HashMap;
 
-/// A bone in contact with furniture or a wall in one frame.
-#[derive(Debug, Clone, PartialEq)]
-pub struct EngineContact {
-    /// Index of the human in the scene.
-    pub human: usize,
-    /// Index of the bone in its skeleton.
-    pub bone: usize,
-    /// What it touches.
-    pub owner: Owner,
-    /// The frame.
-    pub frame: usize,
-    /// Penetration depth the engine reports (m, positive).
-    pub depth: f64,
-}
+pub use crate::physics::EngineContact;
 
 /// Replays every human of `scene` in a Rapier world and returns the contacts deeper than
 /// `tolerance`, frame by frame: the deepest per bone and owner (an object's parts are one owner,

@@ -10,14 +10,7 @@ use glam::{DVec3, Quat, Vec3};
 use rapier3d::parry::math::Pose;
 use rapier3d::parry::shape::Cuboid;
 
-/// What a solid belongs to.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Owner {
-    /// Object `i` of the scene.
-    Object(usize),
-    /// The wall on floor-plan edge `i`.
-    Wall(usize),
-}
+pub use crate::physics::Owner;
 
 /// One box of the scene.
 #[derive(Debug, Clone, PartialEq)]

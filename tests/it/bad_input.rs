@@ -190,7 +190,7 @@ fn conditions_into_an_unwritable_place_fails_cleanly() {
 }
 
 #[test]
-fn polish_reads_every_scene_before_writing_any() {
+fn repair_reads_every_scene_before_writing_any() {
     let dir = tempfile::tempdir().unwrap();
     let inputs = dir.path().join("in");
     std::fs::create_dir_all(&inputs).unwrap();
@@ -199,10 +199,38 @@ fn polish_reads_every_scene_before_writing_any() {
     v["objects"][0]["size"][0] = json!(f64::NAN.to_string());
     let bad = write_file(&inputs, "b.json", &v.to_string());
     let out_dir = dir.path().join("out");
-    let out = shade_sim(&["polish", inputs.to_str().unwrap(), "--out", out_dir.to_str().unwrap()]);
+    let out = shade_sim(&["repair", inputs.to_str().unwrap(), "--out", out_dir.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2));
     let err = stderr(&out);
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(err.starts_with(&format!("error: {}: ", bad.display())), "{err}");
     assert!(!out_dir.exists(), "nothing written for a rejected folder");
+}
+
+#[test]
+fn a_bad_repair_config_names_its_file_and_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write_file(dir.path(), "a.json", &valid().to_string());
+    let out_dir = dir.path().join("out");
+    for (text, says) in [
+        (r#"{"settle": {"rounds": 5000}}"#, "settle.rounds: 5000 rounds is more than 1000"),
+        (r#"{"steps": ["settle", "polish"]}"#, "steps[1]: unknown variant `polish`"),
+        (r#"{"settle": {"max_step": -1}}"#, "settle.max_step: -1 is not a length"),
+        ("{", "."),
+    ] {
+        let config = write_file(dir.path(), "repair.json", text);
+        let out = shade_sim(&[
+            "repair",
+            scene.to_str().unwrap(),
+            "--out",
+            out_dir.to_str().unwrap(),
+            "--config",
+            config.to_str().unwrap(),
+        ]);
+        assert_eq!(out.status.code(), Some(2), "{text}");
+        let err = stderr(&out);
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.starts_with(&format!("error: {}: {says}", config.display())), "{text}: {err}");
+        assert!(!out_dir.exists(), "nothing written for a bad config");
+    }
 }

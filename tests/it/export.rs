@@ -254,7 +254,7 @@ fn every_scene_exports_to_every_format_and_the_python_consumers_load_them() {
     // Static worlds: no furniture body moves. Free worlds (generated layouts may overlap, and
     // people push furniture): nothing explodes — finite, inside the room's box, and slower than 5 m/s
     // unless two pieces start more than 5 cm into each other (scenes/reference/bedroom_l: a
-    // nightstand 25 cm into the bed, both holding people, which polishing does not undo).
+    // nightstand 25 cm into the bed, both holding people, which repair does not undo).
     // Reference scenes (with contact humans) report bone–furniture contacts through the pairs.
     let script = r#"
 import sys, mujoco, numpy as np

@@ -95,7 +95,7 @@ proptest! {
             DVec2::new(cx, cy), DVec2::new(cx, y1), DVec2::new(x0, y1),
         ]);
         prop_assert!(l.first_self_intersection().is_none());
-        let w = RoomWindow::for_room(shade_sim::scene::RoomType::Bedroom, &l);
+        let w = RoomWindow::around(shade_sim::scene::RoomType::Bedroom.window_side(), &l);
         let m = Mask::of_polygon(&w, &l);
         let area = m.count() as f64 * w.pixel_area();
         let tolerance = l.perimeter() * w.pixel() + 4.0 * w.pixel_area();

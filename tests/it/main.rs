@@ -8,6 +8,7 @@ mod examples;
 mod export;
 mod geom_props;
 mod import;
+mod layers;
 mod model;
 mod scene_io;
 mod sim;

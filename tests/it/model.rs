@@ -150,37 +150,36 @@ fn train_writes_a_checkpoint_and_generate_is_deterministic() {
     assert_eq!(a, b);
     assert_ne!(a, c);
     assert_ne!(a[0], a[1]);
-    // The default guidance ends with polishing: the same as sampling with the three terms only
-    // and running `polish` on the result.
-    let unpolished = dir.path().join("unpolished");
+    // By default every sample is repaired: the same as sampling with --no-repair and running
+    // `repair` on the result.
+    let unrepaired = dir.path().join("unrepaired");
     let o = shade_sim(&[
         "-q",
         "generate",
         "--input",
         input.to_str().unwrap(),
         "--out",
-        unpolished.to_str().unwrap(),
+        unrepaired.to_str().unwrap(),
         "--samples",
         "2",
         "--seed",
         "5",
         "--model",
         model.to_str().unwrap(),
-        "--guidance",
-        "all",
+        "--no-repair",
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let polished = dir.path().join("polished");
-    let o = shade_sim(&["-q", "polish", unpolished.to_str().unwrap(), "--out", polished.to_str().unwrap()]);
+    let repaired = dir.path().join("repaired");
+    let o = shade_sim(&["-q", "repair", unrepaired.to_str().unwrap(), "--out", repaired.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
     for (k, expected) in a.iter().enumerate() {
         let name = format!("bedroom_rect_{k}.json");
         assert_ne!(
-            &std::fs::read_to_string(unpolished.join(&name)).unwrap(),
+            &std::fs::read_to_string(unrepaired.join(&name)).unwrap(),
             expected,
-            "polishing changes a tiny model's layout"
+            "repair changes a tiny model's layout"
         );
-        assert_eq!(&std::fs::read_to_string(polished.join(&name)).unwrap(), expected);
+        assert_eq!(&std::fs::read_to_string(repaired.join(&name)).unwrap(), expected);
     }
     // --require-clean: an (untrained) tiny model's layouts never pass the check; every round samples
     // anew, nothing is written and the exit status is 1.

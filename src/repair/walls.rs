@@ -1,9 +1,9 @@
 //! Putting back against a wall the pieces the data always stands against one (ours, part of
-//! polishing): beds, cabinets, shelves, sofas, desks, dressing and console tables — in the
+//! repair): beds, cabinets, shelves, sofas, desks, dressing and console tables — in the
 //! calibrated test splits every one of them has its back within 10 cm of a wall, while the models
 //! leave two thirds of them out in the room, where walkers walk into them.
 //!
-//! For a square piece (polishing squares every piece first) the walls parallel to its sides and
+//! For a square piece (repair squares every piece first) the walls parallel to its sides and
 //! facing a side over most of its width are found: a piece that holds nobody may be turned to put
 //! its back to any of them and moved there, `WALL_GAP` from it ([`wall_poses`]; the caller picks
 //! the pose least in people's way); a piece that holds people is not turned and only moves towards
@@ -30,7 +30,7 @@ pub fn stands_against_wall(category: Category) -> bool {
 /// The yaws and centre moves (world, m) that put `b`'s back `WALL_GAP` from a wall: the walls behind
 /// it and in front of it (turned half round) nearest first, then the walls beside it (turned a
 /// quarter, which swaps its footprint's axes) nearest first; empty when no wall faces any side.
-/// The caller picks among them (polishing: the first of those least in people's way).
+/// The caller picks among them (repair: the first of those least in people's way).
 pub fn wall_poses(b: &OBox, polygon: &Polygon) -> Vec<(f64, DVec2)> {
     let (ax, ay) = b.axes();
     let half = b.half().truncate();

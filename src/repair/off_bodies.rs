@@ -1,6 +1,6 @@
-//! Pushing pieces out of the people who pass through them (ours, part of polishing).
+//! Pushing pieces out of the people who pass through them (ours, a repair step).
 //!
-//! Polishing's rounds keep pieces off walking and standing people's paths and off sitters' shins
+//! `settle`'s rounds keep pieces off walking and standing people's paths and off sitters' shins
 //! (`Clearance`, a per-pixel height map), but a diner's thighs and forearms under a table top or a
 //! sitter's knees in the coffee table in front of them are only found by replaying the bodies
 //! against the pieces' parts (`sim::exact_contacts`, the check's own depths). A piece that holds
@@ -11,31 +11,30 @@
 //! off one person may meet another. Where that leaves the bodies no less deep in the pieces
 //! altogether, nothing changes.
 //!
-//! Pieces that hold people stay where polishing put them; hanging pieces are not moved.
+//! Pieces that hold people stay where repair put them; hanging pieces are not moved.
 
 use super::clearance::Clearance;
-use super::inside::fits_inside;
-use super::overlaps::{narrow_by, narrowed_within};
-use super::phys_guidance::PHYS_TOLERANCE;
-use super::polish::shift;
-use super::relocate::is_solid;
+use super::config::{OffBodiesConfig, RepairConfig, StepName};
+use super::helpers::{fits_inside, is_solid, narrow_by, narrowed_within, shift};
+use super::pipeline::{RepairStep, StepReport, Workspace};
 use crate::geom::intersection_volume;
+use crate::physics::{EngineContact, Owner, PHYS_TOLERANCE, Physics};
 use crate::scene::{Object, Scene};
-use crate::sim::{EngineContact, Owner, exact_contacts};
 use glam::DVec2;
-
-/// How far beyond the deepest bone a piece is pushed (m).
-const MARGIN: f64 = 0.01;
-/// Pushes at most.
-const ROUNDS: usize = 4;
 
 /// Moves every standing piece that holds nobody (`holds[i]` false) out of the bones that enter it,
 /// where that keeps it inside, apart from the others and no more in people's way, else narrows it
 /// on their side. Returns how many pieces moved or narrowed (none when the bodies would end no less
 /// deep in the pieces) and the bones still deeper than the check's tolerance in the scene it leaves.
-pub(super) fn push_off_bodies(scene: &mut Scene, clearance: &Clearance, holds: &[bool]) -> (usize, Vec<EngineContact>) {
+fn push_off_bodies(
+    scene: &mut Scene,
+    clearance: &Clearance,
+    holds: &[bool],
+    physics: &dyn Physics,
+    cfg: &OffBodiesConfig,
+) -> (usize, Vec<EngineContact>) {
     let before = scene.objects.clone();
-    let first = exact_contacts(scene, PHYS_TOLERANCE);
+    let first = physics.exact_contacts(scene, PHYS_TOLERANCE);
     let start = free_depth(holds, &first);
     if start <= 0.0 {
         return (0, first);
@@ -43,8 +42,8 @@ pub(super) fn push_off_bodies(scene: &mut Scene, clearance: &Clearance, holds: &
     let mut contacts = first.clone();
     let polygon = scene.floor_plan.polygon();
     let mut moved = vec![false; scene.objects.len()];
-    for _ in 0..ROUNDS {
-        let pushes = pushes(scene, holds, &contacts);
+    for _ in 0..cfg.rounds {
+        let pushes = pushes(scene, holds, &contacts, cfg.margin);
         let mut any = false;
         for (i, push) in pushes {
             let o = &scene.objects[i];
@@ -78,7 +77,7 @@ pub(super) fn push_off_bodies(scene: &mut Scene, clearance: &Clearance, holds: &
         if !any {
             break;
         }
-        contacts = exact_contacts(scene, PHYS_TOLERANCE);
+        contacts = physics.exact_contacts(scene, PHYS_TOLERANCE);
     }
     if free_depth(holds, &contacts) >= start {
         scene.objects = before;
@@ -94,8 +93,8 @@ fn free_depth(holds: &[bool], contacts: &[EngineContact]) -> f64 {
 
 /// For each piece that holds nobody and that `contacts`' bones enter: the horizontal move away from them (the
 /// depth-weighted mean direction from the bones' middles to its centre) by the deepest depth plus
-/// [`MARGIN`], in object order.
-fn pushes(scene: &Scene, holds: &[bool], contacts: &[EngineContact]) -> Vec<(usize, DVec2)> {
+/// `margin`, in object order.
+fn pushes(scene: &Scene, holds: &[bool], contacts: &[EngineContact], margin: f64) -> Vec<(usize, DVec2)> {
     let mut sums = vec![(DVec2::ZERO, 0.0f64); scene.objects.len()];
     for c in contacts {
         let Owner::Object(i) = c.owner else { continue };
@@ -113,18 +112,36 @@ fn pushes(scene: &Scene, holds: &[bool], contacts: &[EngineContact]) -> Vec<(usi
     sums.into_iter()
         .enumerate()
         .filter(|(_, (_, deepest))| *deepest > 0.0)
-        .map(|(i, (dir, deepest))| (i, dir.normalize_or_zero() * (deepest + MARGIN)))
+        .map(|(i, (dir, deepest))| (i, dir.normalize_or_zero() * (deepest + margin)))
         .filter(|(_, m)| m.length() > 0.0)
         .collect()
+}
+
+/// The `off_bodies` step.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct OffBodies;
+
+impl RepairStep for OffBodies {
+    fn name(&self) -> StepName {
+        StepName::OffBodies
+    }
+
+    fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport {
+        let physics = work.physics;
+        let (people, holds) = work.holds(scene.objects.len());
+        let (pushed, bones) = push_off_bodies(scene, &people.clearance, holds, physics, &config.off_bodies);
+        work.bones = Some(bones);
+        StepReport::OffBodies { pushed }
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::data::generate_room;
-    use crate::geom::RoomWindow;
     use crate::human::{Body, Motion, stand};
     use crate::scene::{Action, Category, RoomType};
+    use crate::sim::{SimPhysics, exact_contacts};
 
     /// A room from y = `south` to 3 m, 4 m wide, with a person standing at (2, 1.5) and a cabinet
     /// south of them, its north face as far into them as makes the deepest bone 5–6 cm deep.
@@ -159,7 +176,7 @@ mod tests {
     }
 
     fn clearance_of(scene: &Scene) -> Clearance {
-        Clearance::of(scene, &RoomWindow::for_room(scene.room_type, &scene.floor_plan.polygon()))
+        Clearance::of(scene, &scene.room_window())
     }
 
     #[test]
@@ -168,13 +185,13 @@ mod tests {
         let before = scene.objects[0].clone();
         let clearance = clearance_of(&scene);
         // Holding someone: it stays.
-        assert_eq!(push_off_bodies(&mut scene, &clearance, &[true]).0, 0);
+        assert_eq!(push_off_bodies(&mut scene, &clearance, &[true], &SimPhysics, &OffBodiesConfig::default()).0, 0);
         assert_eq!(scene.objects[0], before);
-        assert_eq!(push_off_bodies(&mut scene, &clearance, &[false]).0, 1);
+        assert_eq!(push_off_bodies(&mut scene, &clearance, &[false], &SimPhysics, &OffBodiesConfig::default()).0, 1);
         let o = &scene.objects[0];
         let m = DVec2::new(o.center[0] - before.center[0], o.center[1] - before.center[1]);
         // One push, straight away from the person (south), by the depth plus 1 cm; size unchanged.
-        assert!((m.length() - (depth + MARGIN)).abs() < 1e-9, "{m} vs {depth}");
+        assert!((m.length() - (depth + OffBodiesConfig::default().margin)).abs() < 1e-9, "{m} vs {depth}");
         assert!(m.y < 0.0 && m.x.abs() < 0.2 * m.length(), "{m}");
         assert_eq!((o.size, o.yaw, o.center[2]), (before.size, before.yaw, before.center[2]));
         assert!(deepest(&scene) <= PHYS_TOLERANCE, "{}", deepest(&scene));
@@ -189,12 +206,12 @@ mod tests {
         assert_eq!(again, depth);
         let before = scene.objects[0].clone();
         let clearance = clearance_of(&scene);
-        assert_eq!(push_off_bodies(&mut scene, &clearance, &[false]).0, 1);
+        assert_eq!(push_off_bodies(&mut scene, &clearance, &[false], &SimPhysics, &OffBodiesConfig::default()).0, 1);
         let o = &scene.objects[0];
         // Its back stays at the wall, its front comes in by the push's southward part.
         assert!((o.center[1] - o.size[1] * 0.5 - back).abs() < 1e-9, "{o:?}");
         let cut = before.size[1] - o.size[1];
-        assert!(cut > depth && cut <= depth + MARGIN + 1e-9, "{cut} vs {depth}");
+        assert!(cut > depth && cut <= depth + OffBodiesConfig::default().margin + 1e-9, "{cut} vs {depth}");
         assert!(deepest(&scene) <= PHYS_TOLERANCE + 0.005, "{}", deepest(&scene));
     }
 }

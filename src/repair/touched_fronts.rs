@@ -1,19 +1,20 @@
 //! Tall pieces trimmed to their touchers. The data touches a cabinet, shelf or table taller than
-//! a metre on its front face, the palm on it; polishing puts the pressed volume behind the face
+//! a metre on its front face, the palm on it; repair puts the pressed volume behind the face
 //! ([`touches_front`]), but a piece against a wall cannot always move back that far, and the
 //! toucher's palm and forearm stay inside it. Then the piece loses depth at the front, its back
 //! where it was, until its front face is at the nearest toucher's palm — never below the
 //! category's shallowest real piece. Nothing moves; low pieces (the palm rests on their top) are
 //! left alone.
 
-use super::deep_seats::trim_front_within_real;
+use super::config::{RepairConfig, StepName};
+use super::helpers::{local_extent, touches_front, trim_front_within_real};
 use super::occupancy::Occupancy;
-use super::polish::{local_extent, touches_front};
+use super::pipeline::{RepairStep, StepReport, Workspace};
 use crate::scene::{Action, Scene};
 
 /// Trims every piece touched on its front whose touchers' pressed volumes lie behind the face.
 /// Returns how many it trimmed.
-pub(super) fn trim_touched_fronts(scene: &mut Scene, people: &Occupancy) -> usize {
+fn trim_touched_fronts(scene: &mut Scene, people: &Occupancy) -> usize {
     let mut trimmed = 0;
     for i in 0..scene.objects.len() {
         let held = people.held_by(i);
@@ -34,13 +35,27 @@ pub(super) fn trim_touched_fronts(scene: &mut Scene, people: &Occupancy) -> usiz
     trimmed
 }
 
+/// The `touched_fronts` step.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct TouchedFronts;
+
+impl RepairStep for TouchedFronts {
+    fn name(&self) -> StepName {
+        StepName::TouchedFronts
+    }
+
+    fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, _config: &RepairConfig) -> StepReport {
+        StepReport::TouchedFronts { trimmed: trim_touched_fronts(scene, &work.people) }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::data::generate_room;
     use crate::furniture::size_range;
-    use crate::generator::polish_scene;
     use crate::human::{Body, Motion, Side, palm_of, touch};
+    use crate::repair::tests::repair_with_rounds;
     use crate::scene::{Category, Object, RoomType};
     use crate::sim::{CheckConfig, check_scene};
     use glam::DVec3;
@@ -71,7 +86,7 @@ mod tests {
         let mut scene = touched_wardrobe(0.62, 0.1);
         let check = CheckConfig { stability: false, ..CheckConfig::default() };
         assert!(!check_scene(&scene, &check).violations.is_empty(), "the forearm is in the wardrobe first");
-        let r = polish_scene(&mut scene, 30);
+        let r = repair_with_rounds(&mut scene, 30);
         let o = &scene.objects[0];
         let (back, front) = (o.center[1] + o.size[1] * 0.5, o.center[1] - o.size[1] * 0.5);
         assert!((3.94..=4.0).contains(&back), "its back at the wall: {back} {r:?}");
@@ -87,12 +102,12 @@ mod tests {
         // Palm on the face already: nothing to trim.
         let mut scene = touched_wardrobe(0.6, 0.0);
         let before = scene.objects[0].size;
-        polish_scene(&mut scene, 30);
+        repair_with_rounds(&mut scene, 30);
         assert!((scene.objects[0].size[1] - before[1]).abs() < 1e-9);
         // Palm 40 cm inside a 60 cm wardrobe: no real wardrobe is 20 cm deep; it stops at the
         // shallowest real one.
         let mut scene = touched_wardrobe(0.6, 0.4);
-        polish_scene(&mut scene, 30);
+        repair_with_rounds(&mut scene, 30);
         assert!((scene.objects[0].size[1] - size_range(Category::Wardrobe, 1).0).abs() < 1e-9);
     }
 }

@@ -1,27 +1,26 @@
 //! Swapping a double bed that stands in people's way for a single bed, or narrowing it to the
-//! narrowest real double bed where that is enough (ours, part of polishing).
+//! narrowest real double bed where that is enough (ours, the `bed_swap` repair step).
 //!
 //! The models put double beds where the data has narrower ones, and a double bed across a walkway
-//! was the commonest way a walker walked into a bed. This module only swaps; polishing decides when
-//! (after its rounds) and keeps everything else.
+//! was the commonest way a walker walked into a bed. This step only swaps, after `settle`'s rounds, and keeps
+//! everything else.
 
 use super::completion::median_size;
+use super::config::{BedSwapConfig, RepairConfig, StepName};
+use super::helpers::shift;
 use super::occupancy::Occupancy;
-use super::polish::shift;
-use crate::eval::contact_iou;
+use super::pipeline::{RepairStep, StepReport, Workspace};
 use crate::furniture::size_range;
+use crate::measure::contact_iou;
 use crate::scene::{Category, Object, Scene};
 
-/// Floor area (m²) a double bed must keep from people's way for `single_beds_off_paths` to swap it:
-/// below that, swapping bought few clean rooms and cost CKL (more single beds than the data has).
-const SWAP_BLOCKED_AREA: f64 = 0.02;
-
-/// Swaps each double bed still in people's way (at least `SWAP_BLOCKED_AREA`) after the rounds
+/// Swaps each double bed still in people's way (at least `cfg.blocked_area`; below that, swapping bought few clean
+/// rooms and cost CKL: more single beds than the data has) after the rounds
 /// (`Clearance`) for a single bed of the median real width, cut from the side where it is in the
 /// way, where that clears part of the way (or narrows it to the narrowest real double bed, where
 /// that clears all of it), keeps what it holds as covered (a tenth off at most) and
 /// it holds at most one person. Returns how many it swapped.
-pub(super) fn single_beds_off_paths(scene: &mut Scene, people: &Occupancy) -> usize {
+fn single_beds_off_paths(scene: &mut Scene, people: &Occupancy, cfg: &BedSwapConfig) -> usize {
     let width = median_size(Category::SingleBed)[0];
     let mut swapped = 0;
     for i in 0..scene.objects.len() {
@@ -35,7 +34,7 @@ pub(super) fn single_beds_off_paths(scene: &mut Scene, people: &Occupancy) -> us
         }
         let b = o.obox();
         let blocked = people.clearance.blocked(&b, true);
-        if (blocked.len() as f64) * people.clearance.window().pixel_area() < SWAP_BLOCKED_AREA {
+        if (blocked.len() as f64) * people.clearance.window().pixel_area() < cfg.blocked_area {
             continue;
         }
         // Cut from the side the blocked pixels are on (local x).
@@ -68,6 +67,20 @@ pub(super) fn single_beds_off_paths(scene: &mut Scene, people: &Occupancy) -> us
     swapped
 }
 
+/// The `bed_swap` step.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct BedSwap;
+
+impl RepairStep for BedSwap {
+    fn name(&self) -> StepName {
+        StepName::BedSwap
+    }
+
+    fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport {
+        StepReport::BedSwap { swapped: single_beds_off_paths(scene, &work.people, &config.bed_swap) }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -92,7 +105,7 @@ mod tests {
         let people = Occupancy::of(&scene);
         let clearance = &people.clearance;
         let before = clearance.blocked(&bed.obox(), true).len();
-        assert_eq!(single_beds_off_paths(&mut scene, &people), 1);
+        assert_eq!(single_beds_off_paths(&mut scene, &people, &BedSwapConfig::default()), 1);
         let o = &scene.objects[0];
         assert_eq!((o.category, o.size[0]), (Category::SingleBed, median_size(Category::SingleBed)[0]));
         assert!((o.center[0] - o.size[0] * 0.5 - (bed.center[0] - 0.9)).abs() < 1e-9, "the −x side stays: {o:?}");
@@ -122,9 +135,9 @@ mod tests {
             (0..100).map(|k| p.x - 0.05 * k as f64).find(|&x| clearance.blocked(&bed_at(x).obox(), true).is_empty());
         let bed = bed_at(clear.unwrap() + 0.25);
         let blocked = clearance.blocked(&bed.obox(), true).len() as f64 * clearance.window().pixel_area();
-        assert!(blocked >= SWAP_BLOCKED_AREA, "{blocked}");
+        assert!(blocked >= BedSwapConfig::default().blocked_area, "{blocked}");
         scene.objects = vec![bed.clone()];
-        assert_eq!(single_beds_off_paths(&mut scene, &people), 1);
+        assert_eq!(single_beds_off_paths(&mut scene, &people, &BedSwapConfig::default()), 1);
         let o = &scene.objects[0];
         let narrowest = size_range(Category::DoubleBed, 0).0;
         assert!((narrowest - 1.317).abs() < 1e-9, "catalog.csv's narrowest double bed: {narrowest}");

@@ -1,25 +1,30 @@
-//! What polishing knows of a scene's people (ours): their conditions (contact boxes, free-space
+//! What repair knows of a scene's people (ours): their conditions (contact boxes, free-space
 //! mask), each contact box's seat gaps, where their bodies need the room clear, and which object
 //! holds which contact box.
 //!
-//! It decides nothing: `polish` assigns the holders and every polishing step reads them here. The
+//! It decides only who holds whom ([`Occupancy::assign`], which `settle` calls each pass); every
+//! step reads it here. The
 //! people never move, so all but the holders are fixed once made.
 
 use super::clearance::Clearance;
 use super::completion::SeatGaps;
+use super::config::SettleConfig;
+use crate::geom::iou_3d;
 use crate::human::{Conditions, ContactBox};
-use crate::scene::Scene;
+use crate::measure::contact_iou;
+use crate::scene::{Action, Group, Object, Scene};
+use glam::DVec2;
 
 /// A scene's people and what holds them.
 #[derive(Debug, Clone)]
-pub(super) struct Occupancy {
+pub struct Occupancy {
     /// The scene's conditioning: contact boxes, free-space mask, room window.
     pub cond: Conditions,
     /// Seat gaps of each contact box, by index into `cond.contact_boxes`.
     pub gaps: Vec<SeatGaps>,
     /// Where the people's bodies need the room clear.
     pub clearance: Clearance,
-    /// (contact box index, object index) of every held box, sorted; empty until polishing assigns it.
+    /// (contact box index, object index) of every held box, sorted; empty until [`Occupancy::assign`].
     pub holders: Vec<(usize, usize)>,
 }
 
@@ -30,6 +35,11 @@ impl Occupancy {
         let clearance = Clearance::of(scene, &cond.window);
         let gaps = cond.contact_boxes.iter().map(|c| SeatGaps::of(scene, c)).collect();
         Occupancy { cond, gaps, clearance, holders: Vec::new() }
+    }
+
+    /// Gives each contact box some object can hold to one ([`assign_contacts`]).
+    pub fn assign(&mut self, scene: &Scene, cfg: &SettleConfig) {
+        self.holders = assign_contacts(scene, &self.cond, cfg);
     }
 
     /// The contact boxes object `i` holds, each with its seat gaps.
@@ -50,6 +60,52 @@ impl Occupancy {
     pub fn holding(&self, n: usize) -> Vec<bool> {
         (0..n).map(|i| self.holds(i)).collect()
     }
+}
+
+/// How many spatially distinct contact boxes `o` can hold: one per chair or stool, one per place
+/// (`place_width` wide) along a sofa or bed, any number of touches.
+fn capacity(o: &Object, place_width: f64) -> usize {
+    match o.category.group() {
+        Group::Chair | Group::Stool => 1,
+        Group::Sofa | Group::Bed => ((o.size[0].max(o.size[1]) / place_width).floor() as usize).max(1),
+        _ => usize::MAX,
+    }
+}
+
+/// (contact box index, object index) for every contact box some object can hold: greedily, best
+/// covered pairs first, then nearest (within 2 m), each object holding at most its capacity of
+/// boxes (boxes of one place at different times count once).
+fn assign_contacts(scene: &Scene, cond: &Conditions, cfg: &SettleConfig) -> Vec<(usize, usize)> {
+    let boxes = &cond.contact_boxes;
+    let mut candidates: Vec<(f64, f64, usize, usize)> = Vec::new();
+    for (k, b) in boxes.iter().enumerate() {
+        if !matches!(b.action, Action::Sit | Action::Lie | Action::Touch) {
+            continue;
+        }
+        for (i, o) in scene.objects.iter().enumerate().filter(|(_, o)| o.category.affords(b.action)) {
+            let cover = contact_iou(&b.obox, std::slice::from_ref(o));
+            let distance = DVec2::from_slice(&o.center[..2]).distance(b.obox.center.truncate());
+            if cover > 0.0 || distance < cfg.max_assign_distance {
+                candidates.push((cover, distance, k, i));
+            }
+        }
+    }
+    candidates.sort_by(|x, y| y.0.total_cmp(&x.0).then(x.1.total_cmp(&y.1)).then((x.2, x.3).cmp(&(y.2, y.3))));
+    let mut held: Vec<(usize, usize)> = Vec::new();
+    for (_, _, k, i) in candidates {
+        if held.iter().any(|(b, _)| *b == k) {
+            continue;
+        }
+        // The boxes `i` already holds, by whether each is at the same place as box k.
+        let same: Vec<bool> =
+            held.iter().filter(|(_, j)| *j == i).map(|(b, _)| iou_3d(&boxes[*b].obox, &boxes[k].obox) >= 0.5).collect();
+        let places = same.iter().filter(|s| !**s).count();
+        if same.contains(&true) || places < capacity(&scene.objects[i], cfg.place_width) {
+            held.push((k, i));
+        }
+    }
+    held.sort_unstable();
+    held
 }
 
 /// A 6 × 5 m room of type `room` with `sofa` alone in it and a person of `stature` (m) lying along

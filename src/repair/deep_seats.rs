@@ -1,4 +1,4 @@
-//! Deep seats trimmed to their sitters. Polishing puts a sitter's support box on a chair or sofa
+//! Deep seats trimmed to their sitters. Repair puts a sitter's support box on a chair or sofa
 //! near enough its front edge for the knees to pass it ([`SeatGaps`](super::completion::SeatGaps)), but a deep seat against a
 //! wall cannot always move that far: then the seat loses depth at the front, its back staying
 //! where it is, until the sitters' lower legs hang clear of it as the data's do. Only depth, never
@@ -6,13 +6,15 @@
 //! L-shaped sofa or a chaise longue, 1.4 m and more) becomes a multi-seat sofa. Likewise a bed whose
 //! sitter's knees do not pass the edge they face by those 7 cm (its other side at a wall) is
 //! narrowed on their side, keeping everyone it holds on it (a sitter's box over that edge by no
-//! more than polishing allows) and no narrower than the category's narrowest real piece. A sofa
+//! more than repair allows) and no narrower than the category's narrowest real piece. A sofa
 //! whose sleeper lies behind the middle of its seat (shoulders in the backrest, the sofa's back at a
 //! wall) loses depth at the front until the seat's middle, which moves back with it, is at them.
 //! Nothing moves.
 
+use super::config::{RepairConfig, SofasToSleepersConfig, StepName};
+use super::helpers::{BED_EDGE_OVERHANG, bed_edge_faced, local_extent, shift, trim_front, trim_front_within_real};
 use super::occupancy::Occupancy;
-use super::polish::{BED_EDGE_OVERHANG, bed_edge_faced, local_extent, shift};
+use super::pipeline::{RepairStep, StepReport, Workspace};
 use crate::furniture::{size_range, template};
 use crate::human::KNEE_OVERHANG;
 use crate::scene::{Action, Category, Group, Object, Scene};
@@ -21,7 +23,7 @@ use glam::DVec2;
 /// Trims every chair and sofa whose sitters sit further back than [`SeatGaps::front`](super::completion::SeatGaps::front) allows
 /// (a sofa too deep for any real piece of its category becomes a multi-seat sofa). Returns how
 /// many it trimmed.
-pub(super) fn trim_deep_seats(scene: &mut Scene, people: &Occupancy) -> usize {
+fn trim_deep_seats(scene: &mut Scene, people: &Occupancy) -> usize {
     let swap_to = Some(Category::MultiSeatSofa).filter(|c| scene.room_type.categories().contains(c));
     let mut trimmed = 0;
     for i in 0..scene.objects.len() {
@@ -58,7 +60,7 @@ pub(super) fn trim_deep_seats(scene: &mut Scene, people: &Occupancy) -> usize {
 /// (a bed that could not move out from under their lower legs: its other side at a wall), on that
 /// side, as far as keeps its other people on it and no narrower than its category's narrowest
 /// real piece. Returns how many it narrowed.
-pub(super) fn trim_beds_to_sitters(scene: &mut Scene, people: &Occupancy) -> usize {
+fn trim_beds_to_sitters(scene: &mut Scene, people: &Occupancy) -> usize {
     let mut trimmed = 0;
     for i in 0..scene.objects.len() {
         let o = &scene.objects[i];
@@ -73,7 +75,7 @@ pub(super) fn trim_beds_to_sitters(scene: &mut Scene, people: &Occupancy) -> usi
         let mut keep = [[f64::NEG_INFINITY; 2]; 2];
         for (c, gaps) in &held {
             let (lo, hi) = local_extent(&c.obox, &b);
-            // The side a sitter faces: their box may overhang its edge as polishing lets it.
+            // The side a sitter faces: their box may overhang its edge as repair lets it.
             let (k, ahead) = bed_edge_faced(o, c);
             let (s, sign) = if ahead { (1, 1.0) } else { (0, -1.0) };
             let sits = c.action == Action::Sit;
@@ -111,10 +113,6 @@ pub(super) fn trim_beds_to_sitters(scene: &mut Scene, people: &Occupancy) -> usi
     trimmed
 }
 
-/// How far behind the middle of a sofa's seat depth a sleeper may lie (m) before the sofa is
-/// trimmed to them.
-const SLEEPER_OFF_MIDDLE: f64 = 0.03;
-
 /// Trims every sofa whose sleepers lie further back than the middle of its seat (the data lays
 /// people along the seat's middle; further back, their shoulders are in the backrest) until the
 /// seat's middle is at the sleeper furthest back, its back staying where it was: a sofa against a
@@ -122,7 +120,7 @@ const SLEEPER_OFF_MIDDLE: f64 = 0.03;
 /// its category's shallowest real piece (turning a deep L-shaped sofa into a multi-seat one changed
 /// no val room and raised CKL).
 /// Returns how many it trimmed.
-pub(super) fn trim_sofas_to_sleepers(scene: &mut Scene, people: &Occupancy) -> usize {
+fn trim_sofas_to_sleepers(scene: &mut Scene, people: &Occupancy, cfg: &SofasToSleepersConfig) -> usize {
     let mut trimmed = 0;
     for i in 0..scene.objects.len() {
         let held = people.held_by(i);
@@ -148,7 +146,7 @@ pub(super) fn trim_sofas_to_sleepers(scene: &mut Scene, people: &Occupancy) -> u
             t.size[1] -= cut;
             template(&t).surface.map_or(0.0, |s| (s.min.y + s.max.y) * 0.5 + t.size[1] * 0.5)
         };
-        if middle(o, 0.0) - wanted <= SLEEPER_OFF_MIDDLE {
+        if middle(o, 0.0) - wanted <= cfg.off_middle {
             continue;
         }
         // The middle moves back as the sofa gets shallower: bisect for the cut that puts it at
@@ -171,31 +169,56 @@ pub(super) fn trim_sofas_to_sleepers(scene: &mut Scene, people: &Occupancy) -> u
     trimmed
 }
 
-/// Takes `cut` (m) off `o`'s depth at its front, but no more than leaves its category's
-/// shallowest real piece; whether it took any.
-pub(super) fn trim_front_within_real(o: &mut Object, cut: f64) -> bool {
-    let cut = cut.min(o.size[1] - size_range(o.category, 1).0);
-    if cut > 1e-3 {
-        trim_front(o, cut);
+/// The `deep_seats` step.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct DeepSeats;
+
+impl RepairStep for DeepSeats {
+    fn name(&self) -> StepName {
+        StepName::DeepSeats
     }
-    cut > 1e-3
+
+    fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, _config: &RepairConfig) -> StepReport {
+        StepReport::DeepSeats { trimmed: trim_deep_seats(scene, &work.people) }
+    }
 }
 
-/// Takes `cut` (m) off `o`'s depth at its front (local +y), its back where it was.
-pub(super) fn trim_front(o: &mut Object, cut: f64) {
-    let (_, ay) = o.obox().axes();
-    o.size[1] -= cut;
-    shift(o, -ay * (cut * 0.5));
+/// The `beds_to_sitters` step.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct BedsToSitters;
+
+impl RepairStep for BedsToSitters {
+    fn name(&self) -> StepName {
+        StepName::BedsToSitters
+    }
+
+    fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, _config: &RepairConfig) -> StepReport {
+        StepReport::BedsToSitters { trimmed: trim_beds_to_sitters(scene, &work.people) }
+    }
+}
+
+/// The `sofas_to_sleepers` step.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct SofasToSleepers;
+
+impl RepairStep for SofasToSleepers {
+    fn name(&self) -> StepName {
+        StepName::SofasToSleepers
+    }
+
+    fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport {
+        StepReport::SofasToSleepers { trimmed: trim_sofas_to_sleepers(scene, &work.people, &config.sofas_to_sleepers) }
+    }
 }
 
 #[cfg(test)]
 mod tests {
+    use super::super::completion::SeatGaps;
     use super::*;
     use crate::data::generate_room;
-    use crate::generator::completion::SeatGaps;
-    use crate::generator::polish_scene;
     use crate::human::Conditions;
     use crate::human::KNEE_OVERHANG;
+    use crate::repair::tests::repair_with_rounds;
     use crate::scene::RoomType;
 
     /// How far `contact`'s knees pass the front edge of `o`'s seat (m; the knee that passes least).
@@ -238,7 +261,7 @@ mod tests {
             let (depth, overhang) = (scene.objects[i].size[1], knee_overhang(&scene, &scene.objects[i]));
             assert!(overhang >= KNEE_OVERHANG - 0.02, "the data's sitters clear the edge: {overhang}");
             deepen(&mut scene, i, 0.35);
-            let r = polish_scene(&mut scene, 30);
+            let r = repair_with_rounds(&mut scene, 30);
             let o = &scene.objects[i];
             assert!(knee_overhang(&scene, o) >= KNEE_OVERHANG - 0.01, "{index}: {} {r:?}", knee_overhang(&scene, o));
             assert!(o.size[1] <= depth + 0.35 + 1e-9 && o.size[1] >= size_range(o.category, 1).0 - 1e-9);
@@ -276,9 +299,9 @@ mod tests {
         let (west, east) = (o.center[0] - o.size[0] * 0.5, o.center[0] + o.size[0] * 0.5);
         assert!((east - (knee - KNEE_OVERHANG)).abs() < 1e-9, "east edge {east}, knees {knee}");
         assert!((west - 1.1).abs() < 1e-9 && o.size[1] == 2.1 && o.size[0] >= size_range(Category::DoubleBed, 0).0);
-        // Still on the mattress: the support box overhangs the edge by no more than polishing allows.
+        // Still on the mattress: the support box overhangs the edge by no more than repair allows.
         let b = &people.cond.contact_boxes[0].obox;
-        assert!(b.center.x + b.size.x * 0.5 - east <= crate::generator::polish::BED_EDGE_OVERHANG + 1e-9);
+        assert!(b.center.x + b.size.x * 0.5 - east <= crate::repair::helpers::BED_EDGE_OVERHANG + 1e-9);
     }
 
     #[test]
@@ -298,7 +321,7 @@ mod tests {
             // As deep as the shallowest real L-shaped sofa (1.44 m), far deeper than its sitter can use.
             let extra = size_range(Category::LShapedSofa, 1).0 - scene.objects[i].size[1];
             deepen(&mut scene, i, extra);
-            let r = polish_scene(&mut scene, 30);
+            let r = repair_with_rounds(&mut scene, 30);
             let o = &scene.objects[i];
             if r.trimmed > 0 {
                 assert_eq!(o.category, Category::MultiSeatSofa, "{index}");
@@ -319,12 +342,7 @@ mod tests {
         let seat = template(&sofa).surface.unwrap();
         let middle = sofa.center[1] + (seat.min.y + seat.max.y) * 0.5;
         let stature = crate::human::Body::default().stature;
-        crate::generator::occupancy::sofa_with_sleeper(
-            RoomType::Living,
-            sofa,
-            stature,
-            DVec2::new(2.4, middle - behind),
-        )
+        crate::repair::occupancy::sofa_with_sleeper(RoomType::Living, sofa, stature, DVec2::new(2.4, middle - behind))
     }
 
     /// The seat's middle (world y) and the sofa's back (world y) of the south-wall sofa.
@@ -337,7 +355,7 @@ mod tests {
     fn a_deep_sofa_whose_sleeper_lies_against_its_back_loses_depth_until_they_lie_in_the_middle() {
         let (mut scene, people) = sofa_with_sleeper(1.1, 0.1);
         let lie = people.cond.contact_boxes[0].obox.center.y;
-        assert_eq!(trim_sofas_to_sleepers(&mut scene, &people), 1);
+        assert_eq!(trim_sofas_to_sleepers(&mut scene, &people, &SofasToSleepersConfig::default()), 1);
         let o = &scene.objects[0];
         let (middle, back) = middle_and_back(o);
         assert!((middle - lie).abs() < 0.005, "seat's middle {middle}, sleeper {lie}");
@@ -347,13 +365,13 @@ mod tests {
         for behind in [0.0, -0.1] {
             let (mut scene, people) = sofa_with_sleeper(1.1, behind);
             let before = scene.objects.clone();
-            assert_eq!(trim_sofas_to_sleepers(&mut scene, &people), 0);
+            assert_eq!(trim_sofas_to_sleepers(&mut scene, &people, &SofasToSleepersConfig::default()), 0);
             assert_eq!(scene.objects, before);
         }
         // Far behind a sofa only a little deeper than the shallowest real one: it stops there.
         let shallowest = size_range(Category::MultiSeatSofa, 1).0;
         let (mut scene, people) = sofa_with_sleeper(shallowest + 0.05, 0.3);
-        trim_sofas_to_sleepers(&mut scene, &people);
+        trim_sofas_to_sleepers(&mut scene, &people, &SofasToSleepersConfig::default());
         assert!((scene.objects[0].size[1] - shallowest).abs() < 1e-9);
     }
 }

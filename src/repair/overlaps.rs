@@ -1,4 +1,4 @@
-//! The last step of polishing (ours): overlaps the moves could not undo, because both pieces are
+//! `overlaps`, the last repair step (ours): overlaps the moves could not undo, because both pieces are
 //! wedged between walls and neighbours, are resolved by narrowing or, failing that, removing a piece.
 //!
 //! - Narrowing: where the shortest footprint separation of a pair runs along one of the smaller
@@ -11,15 +11,11 @@
 //!
 //! It does not move anything: placement is the rounds' job.
 
-use super::polish::footprint_separations;
+use super::config::{RepairConfig, StepName};
+use super::helpers::{footprint_separations, narrow_by};
+use super::pipeline::{RepairStep, StepReport, Workspace};
 use crate::geom::intersection_volume;
-use crate::scene::{Object, Scene};
-use glam::DVec2;
-
-/// Largest narrowing of a piece (m).
-const MAX_NARROWING: f64 = 0.1;
-/// Largest narrowing as a share of the piece's size along that axis.
-const MAX_NARROWING_SHARE: f64 = 0.25;
+use crate::scene::Scene;
 
 /// What resolving overlaps changed.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -80,31 +76,20 @@ fn narrow_apart(scene: &mut Scene, i: usize, j: usize) -> bool {
     along_own && narrow_by(&mut scene.objects[small], m) && !overlap(scene, small, other)
 }
 
-/// The most a piece `size` long along an axis may be cut along it (m): 10 cm and a quarter of it.
-fn max_cut(size: f64) -> f64 {
-    MAX_NARROWING.min(MAX_NARROWING_SHARE * size)
-}
+/// The `overlaps` step.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Overlaps;
 
-/// Whether `after` is narrower than `before` in width and depth by no more than one cut may take.
-pub(super) fn narrowed_within(before: &Object, after: &Object) -> bool {
-    (0..2).all(|k| before.size[k] - after.size[k] <= max_cut(before.size[k]) + 1e-9)
-}
+impl RepairStep for Overlaps {
+    fn name(&self) -> StepName {
+        StepName::Overlaps
+    }
 
-/// Cuts `o` so that the side it would move away from by `m` (world) comes in by `m`, its other
-/// side staying put, if each cut along its own axes is at most 10 cm and a quarter of its size
-/// there. Returns whether it cut.
-pub(super) fn narrow_by(o: &mut Object, m: DVec2) -> bool {
-    let (ax, ay) = o.obox().axes();
-    let cuts = [ax.dot(m), ay.dot(m)];
-    if cuts.iter().zip(o.size).any(|(c, size)| c.abs() > max_cut(size)) {
-        return false;
+    fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, _config: &RepairConfig) -> StepReport {
+        let (_, holds) = work.holds(scene.objects.len());
+        let r = resolve_overlaps(scene, holds);
+        StepReport::Overlaps { narrowed: r.narrowed, removed: r.removed }
     }
-    for (k, c) in cuts.into_iter().enumerate() {
-        o.size[k] -= c.abs();
-    }
-    o.center[0] += m.x * 0.5;
-    o.center[1] += m.y * 0.5;
-    true
 }
 
 #[cfg(test)]

@@ -1,4 +1,4 @@
-//! Where people's bodies are, for polishing: over the 256² room window, the lowest and highest
+//! Where people's bodies are, for repair: over the 256² room window, the lowest and highest
 //! point of any bone (capsule) above each pixel in any walking or standing frame, and separately of
 //! the shins and feet in sitting and touching frames (a sitter's lower legs hang in front of the
 //! seat, a toucher stands; a sleeper's rest on the bed). A piece of furniture is in the way where its footprint covers a pixel and its
@@ -119,13 +119,12 @@ impl Clearance {
 mod tests {
     use super::*;
     use crate::data::generate_room;
-    use crate::geom::RoomWindow;
     use crate::scene::RoomType;
 
     #[test]
     fn a_walker_blocks_a_table_on_the_path_but_not_a_lamp_above_their_head() {
         let scene = generate_room(RoomType::Living, 3, 2, false).scene;
-        let window = RoomWindow::for_room(scene.room_type, &scene.floor_plan.polygon());
+        let window = scene.room_window();
         let c = Clearance::of(&scene, &window);
         // A walking human's pelvis at some frame: a box there is blocked, the same box raised
         // above the tallest head is not.
@@ -141,7 +140,7 @@ mod tests {
     #[test]
     fn a_sitters_shins_block_a_cabinet_but_not_a_table() {
         let scene = generate_room(RoomType::Dining, 3, 1, false).scene;
-        let window = RoomWindow::for_room(scene.room_type, &scene.floor_plan.polygon());
+        let window = scene.room_window();
         let c = Clearance::of(&scene, &window);
         let sitter = scene.humans.iter().find(|h| h.actions.iter().any(|a| a.action == Action::Sit)).expect("a sitter");
         let f = sitter.actions.iter().find(|a| a.action == Action::Sit).unwrap().start;

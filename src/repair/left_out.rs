@@ -1,4 +1,4 @@
-//! Leaving out a piece that people still pass through (ours, the last resort of polishing).
+//! Leaving out a piece that people still pass through (ours, the `left_out` repair step).
 //!
 //! After the rounds, relocation and `off_bodies` have moved and narrowed what they could, a piece
 //! that holds nobody and that a bone still enters deeper than the check's 2 cm is usually one the
@@ -6,7 +6,7 @@
 //! in a walkway, a wardrobe in the path to the door. Such a piece is taken out of the layout: a
 //! room without it is one people can use, and one the check passes. Kept whatever enters them:
 //!
-//! - pieces that hold a person's contact (they are moved, never removed, by polishing);
+//! - pieces that hold a person's contact (they are moved, never removed, by repair);
 //! - a piece someone sits at: a top at least 15 cm above a sitter's seat whose footprint reaches
 //!   the spot up to 0.8 m in front of their support box (a diner's thighs under the table top are
 //!   a near miss, a dining room without its table is wrong; a coffee table in a sitter's shins is
@@ -17,25 +17,23 @@
 //!
 //! It moves nothing.
 
+use super::config::{LeftOutConfig, RepairConfig, StepName};
+use super::pipeline::{RepairStep, StepReport, Workspace};
 use crate::geom::facing;
 use crate::human::ContactBox;
+use crate::physics::{EngineContact, Owner, PHYS_TOLERANCE};
 use crate::scene::{Action, Category, Group, Object, RoomType, Scene};
-use crate::sim::{EngineContact, Owner};
-
-/// How far in front of a sitter's support box a piece they sit at may begin (m).
-const SITS_AT_REACH: f64 = 0.8;
-/// How far above a sitter's seat the top of a piece they sit at is at least (m).
-const SITS_AT_ABOVE: f64 = 0.15;
 
 /// Removes, from the last to the first, every standing piece that holds nobody (`holds[i]`
 /// false), that a bone of `bones` enters (the scene's exact contacts deeper than the check's
 /// tolerance) and that none of the rules above keeps; `holds` loses the same entries. Returns how
 /// many it removed.
-pub(super) fn leave_out_entered(
+fn leave_out_entered(
     scene: &mut Scene,
     bones: &[EngineContact],
     contacts: &[ContactBox],
     holds: &mut Vec<bool>,
+    cfg: &LeftOutConfig,
 ) -> usize {
     let mut entered = vec![false; scene.objects.len()];
     for c in bones {
@@ -46,7 +44,7 @@ pub(super) fn leave_out_entered(
     let mut removed = 0;
     for i in (0..scene.objects.len()).rev() {
         let o = &scene.objects[i];
-        let kept = holds[i] || o.category.is_hanging() || contacts.iter().any(|c| sits_at(c, o));
+        let kept = holds[i] || o.category.is_hanging() || contacts.iter().any(|c| sits_at(c, o, cfg));
         if !entered[i] || kept || is_last_anchor(scene, i) {
             continue;
         }
@@ -57,16 +55,16 @@ pub(super) fn leave_out_entered(
     removed
 }
 
-/// Whether `contact` is a sitter who sits at `o`: its top at least [`SITS_AT_ABOVE`] above their
+/// Whether `contact` is a sitter who sits at `o`: its top at least `cfg.sits_at_above` above their
 /// seat (the support box's top) and its footprint over a point on the line from the box's centre
-/// to [`SITS_AT_REACH`] beyond its front edge, the way they face.
-fn sits_at(contact: &ContactBox, o: &Object) -> bool {
+/// to `cfg.sits_at_reach` beyond its front edge, the way they face.
+fn sits_at(contact: &ContactBox, o: &Object, cfg: &LeftOutConfig) -> bool {
     let b = &contact.obox;
-    if contact.action != Action::Sit || o.obox().z_range().1 < b.z_range().1 + SITS_AT_ABOVE {
+    if contact.action != Action::Sit || o.obox().z_range().1 < b.z_range().1 + cfg.sits_at_above {
         return false;
     }
     let ahead = facing(b.yaw);
-    let reach = b.size.y * 0.5 + SITS_AT_REACH;
+    let reach = b.size.y * 0.5 + cfg.sits_at_reach;
     let footprint = o.obox();
     (0..=16).any(|k| footprint.footprint_contains(b.center.truncate() + ahead * (reach * k as f64 / 16.0)))
 }
@@ -86,11 +84,30 @@ fn is_last_anchor(scene: &Scene, i: usize) -> bool {
     anchor(&scene.objects[i]) && scene.objects.iter().filter(|o| anchor(o)).count() == 1
 }
 
+/// The `left_out` step.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct LeftOut;
+
+impl RepairStep for LeftOut {
+    fn name(&self) -> StepName {
+        StepName::LeftOut
+    }
+
+    fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport {
+        let bones = match work.bones.take() {
+            Some(bones) => bones,
+            None => work.physics.exact_contacts(scene, PHYS_TOLERANCE),
+        };
+        let (people, holds) = work.holds(scene.objects.len());
+        let contacts = people.cond.contact_boxes.clone();
+        StepReport::LeftOut { left_out: leave_out_entered(scene, &bones, &contacts, holds, &config.left_out) }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::data::generate_room;
-    use crate::generator::phys_guidance::PHYS_TOLERANCE;
     use crate::human::{Body, Conditions, Motion, sit, stand};
     use crate::sim::exact_contacts;
     use glam::DVec2;
@@ -114,7 +131,7 @@ mod tests {
         let contacts = Conditions::contact_boxes_of(scene);
         let bones = exact_contacts(scene, PHYS_TOLERANCE);
         let mut holds = holds.to_vec();
-        let n = leave_out_entered(scene, &bones, &contacts, &mut holds);
+        let n = leave_out_entered(scene, &bones, &contacts, &mut holds, &LeftOutConfig::default());
         (n, holds)
     }
 
@@ -153,7 +170,12 @@ mod tests {
             let contacts = Conditions::contact_boxes_of(&scene);
             let entered = exact_contacts(&scene, PHYS_TOLERANCE).iter().any(|c| c.owner == Owner::Object(0));
             assert!(entered, "{:?} is entered", piece.category);
-            assert_eq!(contacts.iter().any(|c| sits_at(c, &piece)), kept, "{:?}", piece.category);
+            assert_eq!(
+                contacts.iter().any(|c| sits_at(c, &piece, &LeftOutConfig::default())),
+                kept,
+                "{:?}",
+                piece.category
+            );
             assert_eq!(leave_out(&mut scene, &[false, false]).0, usize::from(!kept), "{:?}", piece.category);
         }
     }

@@ -1,4 +1,4 @@
-//! Sofas widened to their people. Polishing keeps each sitter's or sleeper's support box on a
+//! Sofas widened to their people. Repair keeps each sitter's or sleeper's support box on a
 //! sofa's seat by moving the sofa, but a sofa with people at both ends, or one that cannot slide
 //! along its wall (a side wall, a corner, a neighbour), leaves a box over an arm: the sitter's
 //! hip and elbow or the sleeper's head and feet end up inside it. Such a sofa grows on the side
@@ -10,23 +10,20 @@
 //! more in walking or standing people's way and no further into the pieces that hold people.
 //! The other pieces it now overlaps are left to `overlaps`, which narrows or removes them.
 
-use super::inside::fits_inside;
+use super::config::{RepairConfig, StepName, WideSeatsConfig};
+use super::helpers::{fits_inside, is_solid, local_extent, shift};
 use super::occupancy::Occupancy;
-use super::polish::{local_extent, shift};
-use super::relocate::is_solid;
+use super::pipeline::{RepairStep, StepReport, Workspace};
 use crate::furniture::{size_range, template};
 use crate::geom::intersection_volume;
 use crate::human::ContactBox;
 use crate::scene::{Action, Category, Group, Object, Scene};
 use glam::DVec3;
 
-/// How far inside the seat's ends the people's boxes end up (m).
-const MARGIN: f64 = 0.01;
-
 /// Widens every sofa whose sitters' or sleepers' boxes overhang its seat at an end (up to the
 /// category's widest real piece, inside the floor plan, no more in people's way and no further into
 /// the pieces that hold people). Returns how many it widened.
-pub(super) fn widen_for_people(scene: &mut Scene, people: &Occupancy) -> usize {
+fn widen_for_people(scene: &mut Scene, people: &Occupancy, cfg: &WideSeatsConfig) -> usize {
     let polygon = scene.floor_plan.polygon();
     let mut widened = 0;
     for i in 0..scene.objects.len() {
@@ -55,8 +52,8 @@ pub(super) fn widen_for_people(scene: &mut Scene, people: &Occupancy) -> usize {
                 let x = b.to_local(*p).x;
                 (lo.min(x - r), hi.max(x + r))
             });
-            let low = (surface.min.x + MARGIN - lo).max(0.0);
-            let high = (hi - surface.max.x + MARGIN).max(0.0);
+            let low = (surface.min.x + cfg.margin - lo).max(0.0);
+            let high = (hi - surface.max.x + cfg.margin).max(0.0);
             if low + high <= 1e-3 {
                 break;
             }
@@ -125,6 +122,20 @@ fn grow_sides(o: &mut Object, low: f64, high: f64) {
     shift(o, ax * ((high - low) * 0.5));
 }
 
+/// The `wide_seats` step.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct WideSeats;
+
+impl RepairStep for WideSeats {
+    fn name(&self) -> StepName {
+        StepName::WideSeats
+    }
+
+    fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport {
+        StepReport::WideSeats { widened: widen_for_people(scene, &work.people, &config.wide_seats) }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -181,12 +192,12 @@ mod tests {
         let (lo, hi) = boxes_ends(&people);
         let (start, end) = seat_ends(&scene.objects[0]);
         assert!(start > lo + 0.1 && end < hi - 0.1, "both sitters overhang the seat: {lo} {start} {end} {hi}");
-        assert_eq!(widen_for_people(&mut scene, &people), 1);
+        assert_eq!(widen_for_people(&mut scene, &people, &WideSeatsConfig::default()), 1);
         let o = &scene.objects[0];
         let (start, end) = seat_ends(o);
         assert!(start <= lo + 1e-6 && end >= hi - 1e-6, "the seat spans both: {lo} {start} {end} {hi}");
         // No wider than that (the margin each side), the middle where it was, nothing else changed.
-        assert!(start >= lo - MARGIN - 0.01 && end <= hi + MARGIN + 0.01, "{lo} {start} {end} {hi}");
+        assert!(start >= lo - 0.02 && end <= hi + 0.02, "{lo} {start} {end} {hi}");
         assert!((o.center[0] - 2.0).abs() < 0.01 && o.center[1] == 0.46 && o.size[1] == 0.9 && o.yaw == 0.0);
         assert!(o.size[0] <= size_range(Category::MultiSeatSofa, 0).1);
     }
@@ -195,7 +206,7 @@ mod tests {
     fn a_sofa_grows_only_on_the_side_its_sitter_overhangs() {
         let (mut scene, people) = sofa_with_sitters(0.0, &[2.8]);
         let west_end = scene.objects[0].center[0] - scene.objects[0].size[0] * 0.5;
-        assert_eq!(widen_for_people(&mut scene, &people), 1);
+        assert_eq!(widen_for_people(&mut scene, &people, &WideSeatsConfig::default()), 1);
         let o = &scene.objects[0];
         assert!((o.center[0] - o.size[0] * 0.5 - west_end).abs() < 1e-9, "the west end stays");
         assert!(seat_ends(o).1 >= boxes_ends(&people).1 - 1e-6);
@@ -206,7 +217,7 @@ mod tests {
         // The west wall 3 cm beyond the sofa's west end: growing west would cross it.
         let (mut scene, people) = sofa_with_sitters(1.03, &[1.2]);
         let before = scene.objects.clone();
-        assert_eq!(widen_for_people(&mut scene, &people), 0);
+        assert_eq!(widen_for_people(&mut scene, &people, &WideSeatsConfig::default()), 0);
         assert_eq!(scene.objects, before);
     }
 
@@ -217,7 +228,7 @@ mod tests {
         let (mut scene, people) = sofa_with_sitters(0.0, &[0.5, 3.5]);
         let widest = size_range(Category::MultiSeatSofa, 0).1;
         assert!(widest < 3.2, "{widest}");
-        assert_eq!(widen_for_people(&mut scene, &people), 1);
+        assert_eq!(widen_for_people(&mut scene, &people, &WideSeatsConfig::default()), 1);
         let o = &scene.objects[0];
         assert!((o.size[0] - widest).abs() < 1e-9 && (o.center[0] - 2.0).abs() < 1e-9, "{:?}", o);
     }
@@ -230,7 +241,7 @@ mod tests {
         let seat = template(&sofa).surface.expect("a sofa has a seat");
         // The pelvis 0.45 statures from the head: the body centred on the sofa.
         let at = DVec2::new(3.0 - 0.05 * 1.75, 0.46 + (seat.min.y + seat.max.y) * 0.5);
-        crate::generator::occupancy::sofa_with_sleeper(room, sofa, 1.75, at)
+        crate::repair::occupancy::sofa_with_sleeper(room, sofa, 1.75, at)
     }
 
     /// The world x range of the joints of the scene's first person.
@@ -245,7 +256,7 @@ mod tests {
         let (mut scene, people) = sofa_with_sleeper(RoomType::Living, Category::LoveseatSofa);
         let (head, feet) = body_ends(&scene);
         assert!(seat_ends(&scene.objects[0]).0 > head, "the head is over the arm first");
-        assert_eq!(widen_for_people(&mut scene, &people), 1);
+        assert_eq!(widen_for_people(&mut scene, &people, &WideSeatsConfig::default()), 1);
         let o = &scene.objects[0];
         assert_eq!(o.category, Category::MultiSeatSofa);
         let (west, east) = seat_ends(o);
@@ -253,7 +264,7 @@ mod tests {
         assert!(o.size[0] <= size_range(Category::MultiSeatSofa, 0).1);
         // A bedroom has no multi-seat sofas: its sofa grows only as far as real ones go.
         let (mut scene, people) = sofa_with_sleeper(RoomType::Bedroom, Category::Sofa);
-        widen_for_people(&mut scene, &people);
+        widen_for_people(&mut scene, &people, &WideSeatsConfig::default());
         let o = &scene.objects[0];
         assert_eq!(o.category, Category::Sofa);
         assert!(o.size[0] <= size_range(Category::Sofa, 0).1 + 1e-9, "{:?}", o);

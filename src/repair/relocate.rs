@@ -1,7 +1,7 @@
-//! Moving a piece that is still in people's way after polishing's rounds to a free spot nearby
-//! (ours, part of polishing).
+//! Moving a piece that is still in people's way after `settle`'s rounds to a free spot nearby
+//! (ours, the `relocate` repair step).
 //!
-//! Polishing's rounds push a piece off the walkers only as far as the pieces around it let it go;
+//! `settle`'s rounds push a piece off the walkers only as far as the pieces around it let it go;
 //! a wardrobe, a sofa or a coffee table the model stood across a walkway often ends up in it still,
 //! or pushed out into the room. A piece that holds nobody and is in the bodies' way moves to the
 //! nearest spot where it is in nobody's way, inside the floor plan and clear of every other
@@ -11,22 +11,18 @@
 //! move pieces that hold people.
 
 use super::clearance::Clearance;
-use super::inside::fits_inside;
+use super::config::{RelocateConfig, RepairConfig, StepName};
+use super::helpers::{fits_inside, is_solid};
+use super::pipeline::{RepairStep, StepReport, Workspace};
 use super::walls::{stands_against_wall, wall_spots};
-use crate::furniture::{PartRole, template};
 use crate::geom::{OBox, Polygon, intersection_volume, wrap_angle};
-use crate::scene::{Object, Scene};
+use crate::scene::Scene;
 use glam::DVec2;
 use std::f64::consts::FRAC_PI_2;
 
-/// Spacing of the grid of spots a free-standing piece may move to (m).
-const GRID_STEP: f64 = 0.1;
-/// Farthest a free-standing piece moves (m): beyond, it would leave the group it stands in.
-const MAX_FREE_MOVE: f64 = 3.0;
-
 /// Moves every standing piece that holds nobody (`holds[i]` false) and is in the bodies' way to
 /// the nearest free spot. Returns how many it moved.
-pub(super) fn relocate_off_paths(scene: &mut Scene, clearance: &Clearance, holds: &[bool]) -> usize {
+fn relocate_off_paths(scene: &mut Scene, clearance: &Clearance, holds: &[bool], cfg: &RelocateConfig) -> usize {
     let polygon = scene.floor_plan.polygon();
     let mut moved = 0;
     for (i, &held) in holds.iter().enumerate() {
@@ -52,7 +48,7 @@ pub(super) fn relocate_off_paths(scene: &mut Scene, clearance: &Clearance, holds
         let spots = if stands_against_wall(o.category) {
             wall_spots(b.size.x, b.size.y, here, &polygon)
         } else {
-            grid_spots(&b, &polygon)
+            grid_spots(&b, &polygon, cfg)
         };
         let best = spots
             .into_iter()
@@ -69,31 +65,41 @@ pub(super) fn relocate_off_paths(scene: &mut Scene, clearance: &Clearance, holds
     moved
 }
 
-/// Poses (yaw, centre) for a free-standing piece `b`: its centre moved by whole `GRID_STEP`s at
-/// most `MAX_FREE_MOVE` and inside `polygon`, as it stands or turned a quarter.
-fn grid_spots(b: &OBox, polygon: &Polygon) -> Vec<(f64, DVec2)> {
+/// Poses (yaw, centre) for a free-standing piece `b`: its centre moved by whole `cfg.grid_step`s at
+/// most `cfg.max_move` and inside `polygon`, as it stands or turned a quarter.
+fn grid_spots(b: &OBox, polygon: &Polygon, cfg: &RelocateConfig) -> Vec<(f64, DVec2)> {
     let here = b.center.truncate();
-    let n = (MAX_FREE_MOVE / GRID_STEP).floor() as i32;
+    let n = (cfg.max_move / cfg.grid_step).floor() as i32;
     let turned = wrap_angle(b.yaw + FRAC_PI_2);
     (-n..=n)
-        .flat_map(|i| (-n..=n).map(move |j| here + DVec2::new(i as f64, j as f64) * GRID_STEP))
-        .filter(|c| c.distance(here) <= MAX_FREE_MOVE && polygon.contains(*c))
+        .flat_map(|i| (-n..=n).map(move |j| here + DVec2::new(i as f64, j as f64) * cfg.grid_step))
+        .filter(|c| c.distance(here) <= cfg.max_move && polygon.contains(*c))
         .flat_map(|c| [(b.yaw, c), (turned, c)])
         .collect()
 }
 
-/// Whether `o` stands solid to the floor (no legs to put feet between): sitters' and touchers'
-/// shins and feet are in its way too.
-pub(super) fn is_solid(o: &Object) -> bool {
-    !template(o).parts.iter().any(|p| p.role == PartRole::Leg)
+/// The `relocate` step.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Relocate;
+
+impl RepairStep for Relocate {
+    fn name(&self) -> StepName {
+        StepName::Relocate
+    }
+
+    fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport {
+        let (people, holds) = work.holds(scene.objects.len());
+        StepReport::Relocate { relocated: relocate_off_paths(scene, &people.clearance, holds, &config.relocate) }
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::data::generate_room;
-    use crate::geom::{RoomWindow, facing};
+    use crate::geom::facing;
     use crate::human::{Body, Motion};
+    use crate::scene::Object;
     use crate::scene::{Category, RoomType};
 
     /// A `w` × `d` m room with someone walking its length along y = `d` / 2, 30 cm from its ends.
@@ -112,7 +118,7 @@ mod tests {
     }
 
     fn clearance_of(scene: &Scene) -> Clearance {
-        Clearance::of(scene, &RoomWindow::for_room(scene.room_type, &scene.floor_plan.polygon()))
+        Clearance::of(scene, &scene.room_window())
     }
 
     #[test]
@@ -126,9 +132,9 @@ mod tests {
         let clearance = clearance_of(&scene);
         assert!(!clearance.blocked(&wardrobe.obox(), true).is_empty());
         // Holding someone: it stays.
-        assert_eq!(relocate_off_paths(&mut scene, &clearance, &[true, false]), 0);
+        assert_eq!(relocate_off_paths(&mut scene, &clearance, &[true, false], &RelocateConfig::default()), 0);
         assert_eq!(scene.objects[0], wardrobe);
-        assert_eq!(relocate_off_paths(&mut scene, &clearance, &[false, false]), 1);
+        assert_eq!(relocate_off_paths(&mut scene, &clearance, &[false, false], &RelocateConfig::default()), 1);
         let o = &scene.objects[0];
         // Out of the way, inside, clear of the cabinet, its back 5 cm from a wall, facing the room.
         assert!(clearance.blocked(&o.obox(), true).is_empty(), "{o:?}");
@@ -153,15 +159,25 @@ mod tests {
         scene.objects = vec![table.clone()];
         let clearance = clearance_of(&scene);
         let solid = is_solid(&table);
-        assert_eq!(relocate_off_paths(&mut scene, &clearance, &[false]), 1);
+        assert_eq!(relocate_off_paths(&mut scene, &clearance, &[false], &RelocateConfig::default()), 1);
         let o = &scene.objects[0];
         // Straight off the walkway, to the side it leant to (south), by whole 10 cm steps: the
         // first spot clear of the walker, one step less is not.
         let dy = o.center[1] - table.center[1];
-        assert!(dy < 0.0 && (dy / GRID_STEP - (dy / GRID_STEP).round()).abs() < 1e-9, "{o:?}");
+        assert!(
+            dy < 0.0
+                && (dy / RelocateConfig::default().grid_step - (dy / RelocateConfig::default().grid_step).round())
+                    .abs()
+                    < 1e-9,
+            "{o:?}"
+        );
         assert_eq!((o.center[0], o.center[2], o.yaw), (table.center[0], table.center[2], table.yaw));
         assert!(clearance.blocked(&o.obox(), solid).is_empty(), "{o:?}");
-        let closer = OBox::new(o.obox().center + glam::DVec3::new(0.0, GRID_STEP, 0.0), o.obox().size, 0.0);
+        let closer = OBox::new(
+            o.obox().center + glam::DVec3::new(0.0, RelocateConfig::default().grid_step, 0.0),
+            o.obox().size,
+            0.0,
+        );
         assert!(!clearance.blocked(&closer, solid).is_empty(), "{o:?}");
         // In a corridor the walker fills, nothing is free: it stays.
         let mut scene = walked_room(RoomType::Living, 4.0, 0.9);
@@ -169,7 +185,7 @@ mod tests {
         scene.objects = vec![table.clone()];
         let clearance = clearance_of(&scene);
         assert!(!clearance.blocked(&table.obox(), solid).is_empty());
-        assert_eq!(relocate_off_paths(&mut scene, &clearance, &[false]), 0);
+        assert_eq!(relocate_off_paths(&mut scene, &clearance, &[false], &RelocateConfig::default()), 0);
         assert_eq!(scene.objects[0], table);
     }
 }

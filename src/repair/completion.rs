@@ -1,4 +1,4 @@
-//! Completing a layout's supports (ours, part of polishing): a person who sits, lies or touches
+//! Completing a layout's supports (ours; `settle` uses it, it is not a step): a person who sits, lies or touches
 //! where no generated object can hold them gets a piece of real furniture placed the way the
 //! calibrated data places one under such a person.
 //!
@@ -17,7 +17,7 @@
 //!
 //! Sizes are the median of the category's real pieces (the furniture catalog), widened or deepened to
 //! cover the box and stretched in height to meet it. Nothing is added beyond the room type's object
-//! limit. This module only makes the objects; polishing moves them with the rest.
+//! limit. This module only makes the objects; repair moves them with the rest.
 
 use crate::data::{Rng, contact_probability, target_frequencies};
 use crate::furniture::{catalog_items, template_of};
@@ -64,7 +64,7 @@ pub(super) fn back_gap(scene: &Scene, contact: &ContactBox) -> f64 {
 /// front of the backrest ([`back_gap`]) and near enough the front edge for the knees to pass it
 /// ([`SeatGaps::front`]). Not a sitter's box: no limits.
 #[derive(Debug, Clone, PartialEq)]
-pub(super) struct SeatGaps {
+pub struct SeatGaps {
     /// Clearance from the backrest (m).
     pub back: f64,
     /// The sitter's knees (world xy) over the span; none for anyone else.
@@ -72,6 +72,7 @@ pub(super) struct SeatGaps {
 }
 
 impl SeatGaps {
+    /// The gaps of `contact`'s person in `scene`.
     pub fn of(scene: &Scene, contact: &ContactBox) -> SeatGaps {
         SeatGaps { back: back_gap(scene, contact), knees: knees(scene, contact) }
     }
@@ -271,9 +272,9 @@ fn free_id(scene: &Scene) -> String {
 mod tests {
     use super::*;
     use crate::data::generate_room;
-    use crate::eval::contact_iou;
-    use crate::generator::polish_scene;
     use crate::human::Conditions;
+    use crate::measure::contact_iou;
+    use crate::repair::tests::repair_with_rounds;
 
     /// Synthetic rooms with a person doing `action`, and the index of the object under them.
     fn rooms_with(room: RoomType, action: Action, groups: &[Group]) -> Vec<(Scene, ContactBox, usize)> {
@@ -383,15 +384,15 @@ mod tests {
     }
 
     #[test]
-    fn polishing_seats_every_sitter_of_a_room_without_seats_and_adds_nothing_to_a_complete_one() {
+    fn repair_seats_every_sitter_of_a_room_without_seats_and_adds_nothing_to_a_complete_one() {
         for (mut scene, _, _) in rooms_with(RoomType::Dining, Action::Sit, &[Group::Chair]) {
-            assert_eq!(polish_scene(&mut scene.clone(), 30).added, 0);
+            assert_eq!(repair_with_rounds(&mut scene.clone(), 30).added, 0);
             scene.objects.retain(|o| !matches!(o.category.group(), Group::Chair | Group::Stool | Group::Sofa));
             let sits: Vec<ContactBox> =
                 Conditions::contact_boxes_of(&scene).into_iter().filter(|b| b.action == Action::Sit).collect();
             assert!(sits.iter().all(|b| contact_iou(&b.obox, &scene.objects) < 0.5));
             let before = scene.objects.len();
-            let report = polish_scene(&mut scene, 30);
+            let report = repair_with_rounds(&mut scene, 30);
             assert!(report.added >= 1 && report.added <= sits.len(), "{report:?}");
             assert_eq!(scene.objects.len(), before + report.added);
             for b in &sits {

@@ -1,0 +1,133 @@
+//! The one way from inputs to checked layouts, for the command line and library users alike:
+//! sample with the generator (guidance during sampling), repair each sample ([`crate::repair`]),
+//! `check` it ([`crate::sim`]) and, with `require_clean`, resample with new seeds until each input
+//! has its layouts or the attempts are spent.
+//!
+//! This is the only module of the library that joins `generator`, `repair` and `sim`; it adds no
+//! behaviour of its own beyond the resampling loop.
+
+use crate::generator::{GenError, Generator, GuidanceConfig};
+use crate::physics::Physics;
+use crate::repair::{RepairConfig, RepairReport, repair_scene};
+use crate::scene::Scene;
+use crate::sim::{CheckConfig, CheckReport, SimPhysics, check_scene};
+use rayon::prelude::*;
+use std::sync::Arc;
+
+/// How to make layouts.
+#[derive(Debug, Clone)]
+pub struct LayoutOptions {
+    /// Layouts wanted per input.
+    pub samples: usize,
+    /// Run seed: the same seed gives the same layouts.
+    pub seed: u64,
+    /// Guidance during sampling.
+    pub guidance: GuidanceConfig,
+    /// Repair after sampling (`None`: the model's layouts as sampled).
+    pub repair: Option<RepairConfig>,
+    /// Keep only layouts that pass `check`, resampling with new seeds.
+    pub require_clean: bool,
+    /// Sampling rounds at most with `require_clean` (at least one).
+    pub attempts: usize,
+    /// The check's settings.
+    pub check: CheckConfig,
+}
+
+impl Default for LayoutOptions {
+    /// One sample, seed 0, all spatial guidance, the default repair, no resampling (what
+    /// `shade-sim generate` does without flags).
+    fn default() -> LayoutOptions {
+        LayoutOptions {
+            samples: 1,
+            seed: 0,
+            guidance: GuidanceConfig::all(),
+            repair: Some(RepairConfig::default()),
+            require_clean: false,
+            attempts: 8,
+            check: CheckConfig::default(),
+        }
+    }
+}
+
+/// One layout kept for an input.
+#[derive(Debug, Clone)]
+pub struct Layout {
+    /// The scene: the input's floor plan and humans with the layout's objects.
+    pub scene: Scene,
+    /// What repair changed (`None` without repair).
+    pub repair: Option<RepairReport>,
+    /// The check's report (only under `require_clean`, where every kept layout passed it).
+    pub check: Option<CheckReport>,
+}
+
+/// The layouts of a run.
+#[derive(Debug, Clone, Default)]
+pub struct Layouts {
+    /// The layouts kept, per input in input order (fewer than asked where `require_clean` found
+    /// no more clean ones).
+    pub kept: Vec<Vec<Layout>>,
+    /// Layouts sampled in all.
+    pub sampled: usize,
+    /// Layouts that passed the check (under `require_clean`).
+    pub accepted: usize,
+}
+
+/// The seed of resampling round `round` for the run seed `seed` (round 0 is the seed itself, so a
+/// clean first sample is the same as without `require_clean`).
+pub fn round_seed(seed: u64, round: usize) -> u64 {
+    seed.wrapping_add(round as u64 * 1_000_003)
+}
+
+/// Layouts for `inputs` (all of the generator's room type): sampled, repaired, checked and
+/// resampled as `opts` says; `progress` gets the number of layouts sampled so far in the round
+/// plus those accepted before it.
+pub fn make_layouts(
+    generator: &Generator,
+    inputs: &[Scene],
+    opts: &LayoutOptions,
+    progress: &mut dyn FnMut(usize),
+) -> Result<Layouts, GenError> {
+    let physics: Arc<dyn Physics> = Arc::new(SimPhysics);
+    let meta = generator.checkpoint.meta.clone();
+    let guidance = opts.guidance.clone();
+    let phys = physics.clone();
+    let mut factory = move |scenes: &[&Scene]| guidance.for_batch(&meta.model, &meta.bounds, scenes, &phys);
+    let rounds = if opts.require_clean { opts.attempts.max(1) } else { 1 };
+    let mut out = Layouts { kept: vec![Vec::new(); inputs.len()], sampled: 0, accepted: 0 };
+    for round in 0..rounds {
+        let wanted: Vec<usize> = (0..inputs.len()).filter(|&i| out.kept[i].len() < opts.samples).collect();
+        if wanted.is_empty() {
+            break;
+        }
+        let batch: Vec<Scene> = wanted.iter().map(|&i| inputs[i].clone()).collect();
+        let accepted = out.accepted;
+        let total = opts.samples * inputs.len();
+        let sampled =
+            generator.generate_with(&batch, opts.samples, round_seed(opts.seed, round), &mut factory, &mut |done| {
+                progress(accepted + done.min(total))
+            })?;
+        let jobs: Vec<(usize, Scene)> =
+            wanted.iter().zip(sampled).flat_map(|(&i, scenes)| scenes.into_iter().map(move |s| (i, s))).collect();
+        let finished: Vec<(usize, Layout)> = jobs
+            .into_par_iter()
+            .map(|(i, mut scene)| {
+                let repair = opts.repair.as_ref().map(|cfg| repair_scene(&mut scene, cfg, physics.as_ref()));
+                let check = opts.require_clean.then(|| check_scene(&scene, &opts.check));
+                (i, Layout { scene, repair, check })
+            })
+            .collect();
+        for (i, layout) in finished {
+            out.sampled += 1;
+            if !opts.require_clean {
+                out.kept[i].push(layout);
+                continue;
+            }
+            let clean = layout.check.as_ref().is_some_and(CheckReport::is_clean);
+            if clean && out.kept[i].len() < opts.samples {
+                out.accepted += 1;
+                out.kept[i].push(layout);
+            }
+        }
+    }
+    Ok(out)
+}

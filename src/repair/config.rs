@@ -1,0 +1,379 @@
+//! `RepairConfig`: which repair steps run, in what order, and every setting they were tuned with.
+//! Read from JSON (`shade-sim repair --config FILE`, `generate --repair-config FILE`); unknown
+//! fields are errors, missing ones take the documented defaults, so `{}` is the default pipeline.
+//!
+//! It only holds settings; the steps are in their own files and the order they run in is
+//! [`StepName::ALL`] unless `steps` says otherwise.
+
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// One repair step, by name (the file `src/repair/<name>.rs` that implements it).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StepName {
+    /// Contact boxes assigned to pieces, missing pieces added, seats turned and fitted, pieces
+    /// squared and put against walls, rounds of small moves (`settle`).
+    Settle,
+    /// Pieces holding nobody moved out of people's way to a free spot (`relocate`).
+    Relocate,
+    /// Double beds in people's way swapped for a narrower or a single bed (`bed_swap`).
+    BedSwap,
+    /// Chairs and sofas too deep for their sitters' knees trimmed at the front (`deep_seats`).
+    DeepSeats,
+    /// Beds under their sitters' lower legs narrowed on that side (`beds_to_sitters`).
+    BedsToSitters,
+    /// Sofas whose sleeper lies behind the seat's middle trimmed at the front (`sofas_to_sleepers`).
+    SofasToSleepers,
+    /// Tall pieces whose touchers' palms are inside them trimmed at the front (`touched_fronts`).
+    TouchedFronts,
+    /// Sofas widened until their seat spans their people (`wide_seats`).
+    WideSeats,
+    /// Pieces poking out of the floor plan moved or narrowed inside (`fit_into_room`).
+    FitIntoRoom,
+    /// Pieces narrowed off the walkers' feet (`narrow_off_paths`).
+    NarrowOffPaths,
+    /// Pieces pushed or narrowed out of the bones that enter them (`off_bodies`).
+    OffBodies,
+    /// Pieces people still pass through left out (`left_out`).
+    LeftOut,
+    /// Overlaps that survive narrowed away or resolved by removing the smaller piece (`overlaps`).
+    Overlaps,
+}
+
+impl StepName {
+    /// Every step, in the order the default pipeline runs them.
+    pub const ALL: [StepName; 13] = [
+        StepName::Settle,
+        StepName::Relocate,
+        StepName::BedSwap,
+        StepName::DeepSeats,
+        StepName::BedsToSitters,
+        StepName::SofasToSleepers,
+        StepName::TouchedFronts,
+        StepName::WideSeats,
+        StepName::FitIntoRoom,
+        StepName::NarrowOffPaths,
+        StepName::OffBodies,
+        StepName::LeftOut,
+        StepName::Overlaps,
+    ];
+
+    /// The name as the config and reports spell it.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            StepName::Settle => "settle",
+            StepName::Relocate => "relocate",
+            StepName::BedSwap => "bed_swap",
+            StepName::DeepSeats => "deep_seats",
+            StepName::BedsToSitters => "beds_to_sitters",
+            StepName::SofasToSleepers => "sofas_to_sleepers",
+            StepName::TouchedFronts => "touched_fronts",
+            StepName::WideSeats => "wide_seats",
+            StepName::FitIntoRoom => "fit_into_room",
+            StepName::NarrowOffPaths => "narrow_off_paths",
+            StepName::OffBodies => "off_bodies",
+            StepName::LeftOut => "left_out",
+            StepName::Overlaps => "overlaps",
+        }
+    }
+}
+
+impl std::fmt::Display for StepName {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// Every repair setting. `RepairConfig::default()` is what `generate` and `repair` use.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RepairConfig {
+    /// The steps that run, in this order (default: [`StepName::ALL`]). A step named twice runs twice.
+    pub steps: Vec<StepName>,
+    /// `settle`'s settings.
+    pub settle: SettleConfig,
+    /// `relocate`'s settings.
+    pub relocate: RelocateConfig,
+    /// `bed_swap`'s settings.
+    pub bed_swap: BedSwapConfig,
+    /// `sofas_to_sleepers`' settings.
+    pub sofas_to_sleepers: SofasToSleepersConfig,
+    /// `wide_seats`' settings.
+    pub wide_seats: WideSeatsConfig,
+    /// `off_bodies`' settings.
+    pub off_bodies: OffBodiesConfig,
+    /// `left_out`'s settings.
+    pub left_out: LeftOutConfig,
+}
+
+impl Default for RepairConfig {
+    fn default() -> RepairConfig {
+        RepairConfig {
+            steps: StepName::ALL.to_vec(),
+            settle: SettleConfig::default(),
+            relocate: RelocateConfig::default(),
+            bed_swap: BedSwapConfig::default(),
+            sofas_to_sleepers: SofasToSleepersConfig::default(),
+            wide_seats: WideSeatsConfig::default(),
+            off_bodies: OffBodiesConfig::default(),
+            left_out: LeftOutConfig::default(),
+        }
+    }
+}
+
+/// `settle`: the passes of contact assignment, completion, fitting and rounds of moves.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SettleConfig {
+    /// Rounds of moves per pass at most (default 60; rounds stop early when nothing moves 1 mm).
+    pub rounds: usize,
+    /// Add a real piece for a contact box nothing can hold (default true).
+    pub complete: bool,
+    /// Turn every piece square to the longest wall (default true).
+    pub square: bool,
+    /// Put pieces the data stands against a wall back against one (default true).
+    pub walls: bool,
+    /// How far a piece's height may grow to cover a contact box (m, default 0.15).
+    pub max_grow_height: f64,
+    /// How far a piece's width or depth may grow to cover a contact box (m, default 0.2).
+    pub max_grow_extent: f64,
+    /// Farthest a piece may be to be given a contact box it does not touch (m, default 2.0).
+    pub max_assign_distance: f64,
+    /// Largest move of one round (m, default 0.3).
+    pub max_step: f64,
+    /// Share of an overlap's or a path's move a piece holding people takes (default 0.2).
+    pub anchored_mobility: f64,
+    /// Contact IoU under which a held box counts as uncovered after a pass (default 0.5).
+    pub covered: f64,
+    /// Width of one person's place on a sofa or bed (m, default 0.55).
+    pub place_width: f64,
+}
+
+impl Default for SettleConfig {
+    fn default() -> SettleConfig {
+        SettleConfig {
+            rounds: 60,
+            complete: true,
+            square: true,
+            walls: true,
+            max_grow_height: 0.15,
+            max_grow_extent: 0.2,
+            max_assign_distance: 2.0,
+            max_step: 0.3,
+            anchored_mobility: 0.2,
+            covered: 0.5,
+            place_width: 0.55,
+        }
+    }
+}
+
+/// `relocate`: the grid of free spots a piece holding nobody may move to.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RelocateConfig {
+    /// Spacing of the grid of candidate centres (m, default 0.1).
+    pub grid_step: f64,
+    /// Farthest move (m, default 3.0).
+    pub max_move: f64,
+}
+
+impl Default for RelocateConfig {
+    fn default() -> RelocateConfig {
+        RelocateConfig { grid_step: 0.1, max_move: 3.0 }
+    }
+}
+
+/// `bed_swap`: when a double bed counts as in people's way.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct BedSwapConfig {
+    /// Area of people's clearance under the bed from which it is swapped (m², default 0.02).
+    pub blocked_area: f64,
+}
+
+impl Default for BedSwapConfig {
+    fn default() -> BedSwapConfig {
+        BedSwapConfig { blocked_area: 0.02 }
+    }
+}
+
+/// `sofas_to_sleepers`: how far off the seat's middle a sleeper may lie.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SofasToSleepersConfig {
+    /// Distance behind the seat's middle a sleeper may lie untrimmed (m, default 0.03).
+    pub off_middle: f64,
+}
+
+impl Default for SofasToSleepersConfig {
+    fn default() -> SofasToSleepersConfig {
+        SofasToSleepersConfig { off_middle: 0.03 }
+    }
+}
+
+/// `wide_seats`: the margin a seat is grown by past its people.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct WideSeatsConfig {
+    /// Seat past the outermost body point at each end (m, default 0.01).
+    pub margin: f64,
+}
+
+impl Default for WideSeatsConfig {
+    fn default() -> WideSeatsConfig {
+        WideSeatsConfig { margin: 0.01 }
+    }
+}
+
+/// `off_bodies`: pushing pieces out of the bones that enter them.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct OffBodiesConfig {
+    /// Clearance a push leaves past the deepest bone (m, default 0.01).
+    pub margin: f64,
+    /// Rounds of pushes at most (default 4).
+    pub rounds: usize,
+}
+
+impl Default for OffBodiesConfig {
+    fn default() -> OffBodiesConfig {
+        OffBodiesConfig { margin: 0.01, rounds: 4 }
+    }
+}
+
+/// `left_out`: who counts as sitting at a table (such a table is never left out).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LeftOutConfig {
+    /// How far beyond the sitter's box, the way they face, the table may begin (m, default 0.8).
+    pub sits_at_reach: f64,
+    /// How far above the sitter's box the table's top must be (m, default 0.15).
+    pub sits_at_above: f64,
+}
+
+impl Default for LeftOutConfig {
+    fn default() -> LeftOutConfig {
+        LeftOutConfig { sits_at_reach: 0.8, sits_at_above: 0.15 }
+    }
+}
+
+/// A repair config that cannot be used: the file, the field, what is wrong.
+#[derive(Debug, thiserror::Error)]
+#[error("{}: {field}: {message}", path.display())]
+pub struct RepairConfigError {
+    /// The config file.
+    pub path: PathBuf,
+    /// The field (`settle.rounds`), or `.` for the whole file.
+    pub field: String,
+    /// What is wrong.
+    pub message: String,
+}
+
+/// Most rounds a pass or push may run (bounds the work one config can ask for).
+const MAX_ROUNDS: usize = 1000;
+
+impl RepairConfig {
+    /// The config in the JSON file `path`, checked ([`RepairConfig::validate`]).
+    pub fn load(path: &Path) -> Result<RepairConfig, RepairConfigError> {
+        let error =
+            |field: &str, message: String| RepairConfigError { path: path.into(), field: field.into(), message };
+        let text = std::fs::read_to_string(path).map_err(|e| error(".", format!("cannot read: {e}")))?;
+        RepairConfig::from_json(&text).map_err(|(field, message)| error(&field, message))
+    }
+
+    /// The config in `text` (JSON), checked; an error is (field, what is wrong).
+    pub fn from_json(text: &str) -> Result<RepairConfig, (String, String)> {
+        let mut de = serde_json::Deserializer::from_str(text);
+        let cfg: RepairConfig = serde_path_to_error::deserialize(&mut de).map_err(|e| {
+            // A syntax error has no field: the path is empty or `?`.
+            let field = e.path().to_string();
+            (if field.is_empty() || field == "?" { ".".into() } else { field }, e.into_inner().to_string())
+        })?;
+        de.end().map_err(|e| (".".to_string(), e.to_string()))?;
+        cfg.validate()?;
+        Ok(cfg)
+    }
+
+    /// Every length and share finite and non-negative, shares at most 1, round counts at most 1,000.
+    pub fn validate(&self) -> Result<(), (String, String)> {
+        let s = &self.settle;
+        let lengths = [
+            ("settle.max_grow_height", s.max_grow_height),
+            ("settle.max_grow_extent", s.max_grow_extent),
+            ("settle.max_assign_distance", s.max_assign_distance),
+            ("settle.max_step", s.max_step),
+            ("settle.place_width", s.place_width),
+            ("relocate.max_move", self.relocate.max_move),
+            ("bed_swap.blocked_area", self.bed_swap.blocked_area),
+            ("sofas_to_sleepers.off_middle", self.sofas_to_sleepers.off_middle),
+            ("wide_seats.margin", self.wide_seats.margin),
+            ("off_bodies.margin", self.off_bodies.margin),
+            ("left_out.sits_at_reach", self.left_out.sits_at_reach),
+            ("left_out.sits_at_above", self.left_out.sits_at_above),
+        ];
+        for (field, v) in lengths {
+            if !(v.is_finite() && (0.0..=100.0).contains(&v)) {
+                return Err((field.into(), format!("{v} is not a length between 0 and 100")));
+            }
+        }
+        for (field, v) in [("settle.anchored_mobility", s.anchored_mobility), ("settle.covered", s.covered)] {
+            if !(v.is_finite() && (0.0..=1.0).contains(&v)) {
+                return Err((field.into(), format!("{v} is not a share between 0 and 1")));
+            }
+        }
+        if s.place_width < 0.1 {
+            return Err(("settle.place_width".into(), format!("{} is narrower than 0.1 m", s.place_width)));
+        }
+        let step = self.relocate.grid_step;
+        if !(step.is_finite() && step >= 0.01 && step <= self.relocate.max_move.max(0.01)) {
+            return Err(("relocate.grid_step".into(), format!("{step} is not between 0.01 m and relocate.max_move")));
+        }
+        for (field, n) in [("settle.rounds", s.rounds), ("off_bodies.rounds", self.off_bodies.rounds)] {
+            if n > MAX_ROUNDS {
+                return Err((field.into(), format!("{n} rounds is more than {MAX_ROUNDS}")));
+            }
+        }
+        if self.steps.len() > 4 * StepName::ALL.len() {
+            return Err((
+                "steps".into(),
+                format!("{} steps is more than {}", self.steps.len(), 4 * StepName::ALL.len()),
+            ));
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_empty_object_is_the_default_pipeline() {
+        assert_eq!(RepairConfig::from_json("{}").unwrap(), RepairConfig::default());
+        assert_eq!(RepairConfig::default().steps.len(), 13);
+    }
+
+    #[test]
+    fn a_config_round_trips_through_json() {
+        let mut cfg = RepairConfig { steps: vec![StepName::Settle, StepName::Overlaps], ..Default::default() };
+        cfg.settle.rounds = 7;
+        let text = serde_json::to_string(&cfg).unwrap();
+        assert!(text.contains("\"steps\":[\"settle\",\"overlaps\"]"), "{text}");
+        assert_eq!(RepairConfig::from_json(&text).unwrap(), cfg);
+    }
+
+    #[test]
+    fn bad_configs_name_the_field() {
+        let field = |text: &str| RepairConfig::from_json(text).unwrap_err().0;
+        assert_eq!(field(r#"{"settle": {"rounds": -1}}"#), "settle.rounds");
+        assert_eq!(field(r#"{"settle": {"roundz": 3}}"#), "settle.roundz");
+        assert_eq!(field(r#"{"steps": ["settle", "polish"]}"#), "steps[1]");
+        assert_eq!(field(r#"{"settle": {"max_step": 1e300}}"#), "settle.max_step");
+        assert_eq!(field(r#"{"settle": {"covered": 1.5}}"#), "settle.covered");
+        assert_eq!(field(r#"{"off_bodies": {"rounds": 100000}}"#), "off_bodies.rounds");
+        assert_eq!(field(r#"{"relocate": {"grid_step": 0}}"#), "relocate.grid_step");
+        assert_eq!(field(r#"{} x"#), ".");
+        assert_eq!(field("{"), ".");
+    }
+}

@@ -1,0 +1,287 @@
+//! Geometry every repair step shares (ours): moving and narrowing a piece, a contact box's extent
+//! in a piece's frame and the part of the piece it must be on, the moves that keep people on their
+//! pieces, separating two footprints, keeping a footprint inside the floor plan (5 mm from the
+//! walls, off an L-shaped room's inner corner), trimming a piece's front within its category's real
+//! sizes.
+//!
+//! Steps import these; they decide nothing and read no configuration but what they are given.
+
+use super::completion::{SeatGaps, TOP_TOUCH_HEIGHT};
+use super::occupancy::Occupancy;
+use crate::furniture::{PartRole, size_range, template};
+use crate::geom::{OBox, Polygon, facing};
+use crate::human::ContactBox;
+use crate::scene::{Action, Group, Object};
+use glam::DVec2;
+
+/// Whether `o`, standing in for object `i`, still has every box `i` holds on the part of it the
+/// box must be on ([`holding_region`]); true for a piece that holds nobody.
+pub fn keeps_its_people(people: &Occupancy, i: usize, o: &Object) -> bool {
+    people.held_by(i).iter().all(|(c, gaps)| containment_shift(c, gaps, o).length() < 1e-3)
+}
+
+pub fn shift(o: &mut Object, m: DVec2) {
+    o.center[0] += m.x;
+    o.center[1] += m.y;
+}
+
+/// Whether `contact` is a palm on `o`'s front face: a touch of a cabinet, shelf or table taller
+/// than [`TOP_TOUCH_HEIGHT`] (the data touches such a piece on its front, facing it).
+pub fn touches_front(o: &Object, contact: &ContactBox) -> bool {
+    contact.action == Action::Touch
+        && o.size[2] > TOP_TOUCH_HEIGHT
+        && matches!(o.category.group(), Group::Table | Group::Cabinet | Group::Shelf)
+}
+
+/// How much deeper than a front touch's pressed volume the band behind the front face is (m).
+pub const FRONT_TOUCH_SLACK: f64 = 0.03;
+
+/// The part of `o`'s footprint (local min, max corners) the person of `contact` must be on: a
+/// seat's or bed's surface for sitting and lying (on a chair or sofa, clear of the backrest and
+/// near enough the front edge for the knees to pass it, [`SeatGaps`]), the whole footprint
+/// otherwise.
+pub fn holding_region(o: &Object, contact: &ContactBox, gaps: &SeatGaps) -> (DVec2, DVec2) {
+    let half = DVec2::new(o.size[0], o.size[1]) * 0.5;
+    let action = contact.action;
+    if touches_front(o, contact) {
+        // The pressed volume just behind the front face (local +y), where the data puts the palm.
+        let (lo, hi) = local_extent(&contact.obox, &o.obox());
+        let depth = hi.y - lo.y + FRONT_TOUCH_SLACK;
+        return (DVec2::new(-half.x, (half.y - depth).max(-half.y)), half);
+    }
+    let Some(surface) = template(o).surface.filter(|_| matches!(action, Action::Sit | Action::Lie)) else {
+        return (-half, half);
+    };
+    if action == Action::Sit && o.category.group() == Group::Bed {
+        return bed_edge_region(o, contact, (surface.min, surface.max));
+    }
+    let backed = action == Action::Sit && matches!(o.category.group(), Group::Chair | Group::Sofa);
+    if !backed {
+        return (surface.min, surface.max);
+    }
+    // The box's front at most `gaps.front` behind the seat's front edge (local +y), unless that
+    // leaves no room behind: a seat too shallow for it.
+    let (lo, hi) = local_extent(&contact.obox, &o.obox());
+    let start = (surface.min.y + gaps.back).max(surface.max.y - gaps.front(contact, o) - (hi.y - lo.y));
+    (DVec2::new(surface.min.x, start), surface.max)
+}
+
+/// How far a bed sitter's support box may overhang the edge they sit on (m): the box reaches a
+/// third down the thighs, which the data seats 20 cm from the edge.
+pub const BED_EDGE_OVERHANG: f64 = 0.1;
+
+/// How far behind the edge the front of a bed sitter's support box may be (m).
+pub const BED_EDGE_BAND: f64 = 0.05;
+
+/// Where a bed sitter's support box must be (local min, max corners): against the edge of the
+/// mattress they face, so that their lower legs hang outside the bed, not in it.
+pub fn bed_edge_region(o: &Object, contact: &ContactBox, (mut lo, mut hi): (DVec2, DVec2)) -> (DVec2, DVec2) {
+    let (k, ahead) = bed_edge_faced(o, contact);
+    let (box_lo, box_hi) = local_extent(&contact.obox, &o.obox());
+    let reach = box_hi[k] - box_lo[k] + BED_EDGE_OVERHANG + BED_EDGE_BAND;
+    if ahead {
+        hi[k] += BED_EDGE_OVERHANG;
+        lo[k] = lo[k].max(hi[k] - reach);
+    } else {
+        lo[k] -= BED_EDGE_OVERHANG;
+        hi[k] = hi[k].min(lo[k] + reach);
+    }
+    (lo, hi)
+}
+
+/// The edge of bed `o` that `contact`'s person faces: its local axis (0: x, 1: y) and whether it is
+/// the edge on that axis's positive side.
+pub fn bed_edge_faced(o: &Object, contact: &ContactBox) -> (usize, bool) {
+    let f = bed_local_facing(o, contact);
+    let k = if f.x.abs() >= f.y.abs() { 0 } else { 1 };
+    (k, f[k] > 0.0)
+}
+
+/// The way `contact`'s person faces, in `o`'s frame (unit).
+pub fn bed_local_facing(o: &Object, contact: &ContactBox) -> DVec2 {
+    facing(contact.obox.yaw - o.yaw)
+}
+
+/// The contact box's footprint corners in `o`'s frame: (min, max) per axis.
+pub fn local_extent(contact: &OBox, o: &OBox) -> (DVec2, DVec2) {
+    let corners = contact.footprint().map(|p| o.to_local(p.extend(o.center.z)).truncate());
+    let lo = corners.iter().fold(DVec2::splat(f64::INFINITY), |a, p| a.min(*p));
+    let hi = corners.iter().fold(DVec2::splat(f64::NEG_INFINITY), |a, p| a.max(*p));
+    (lo, hi)
+}
+
+/// The smallest move of `o` (world, m) that puts `contact`'s footprint inside the part of `o` it
+/// must be on ([`holding_region`]), or centres it there where it cannot fit.
+pub fn containment_shift(contact: &ContactBox, gaps: &SeatGaps, o: &Object) -> DVec2 {
+    let b = o.obox();
+    let (lo, hi) = local_extent(&contact.obox, &b);
+    let (region_lo, region_hi) = holding_region(o, contact, gaps);
+    let mut s = DVec2::ZERO;
+    for k in 0..2 {
+        // Any shift in [hi − region_hi, lo − region_lo] contains the box; an empty range: centre it.
+        let (from, to) = (hi[k] - region_hi[k], lo[k] - region_lo[k]);
+        s[k] = if from > to { (hi[k] + lo[k] - region_hi[k] - region_lo[k]) * 0.5 } else { 0.0f64.clamp(from, to) };
+    }
+    let (ax, ay) = b.axes();
+    ax * s.x + ay * s.y
+}
+
+/// `m` (world) limited, along each of `o`'s axes, to the moves that keep every `held` box on the
+/// part of `o` it must be on ([`holding_region`]); `m` itself when `o` holds nothing.
+pub fn within_slack(o: &Object, held: &[(&ContactBox, &SeatGaps)], m: DVec2) -> DVec2 {
+    if held.is_empty() {
+        return m;
+    }
+    let b = o.obox();
+    let (ax, ay) = b.axes();
+    let mut local = DVec2::new(m.dot(ax), m.dot(ay));
+    for (contact, gaps) in held {
+        let (lo, hi) = local_extent(&contact.obox, &b);
+        let (region_lo, region_hi) = holding_region(o, contact, gaps);
+        for k in 0..2 {
+            // Moving o by s moves the box by −s in o's frame: s ∈ [hi − region_hi, lo − region_lo].
+            let (from, to) = ((hi[k] - region_hi[k]).min(0.0), (lo[k] - region_lo[k]).max(0.0));
+            local[k] = local[k].clamp(from, to);
+        }
+    }
+    ax * local.x + ay * local.y
+}
+
+/// The moves of `a` (m) that separate its footprint from `b`'s along each separating axis (both
+/// directions), with a little clearance, shortest first; empty if the footprints do not overlap.
+pub fn footprint_separations(a: &OBox, b: &OBox) -> Vec<DVec2> {
+    let (pa, pb) = (a.footprint(), b.footprint());
+    let (a1, a2) = a.axes();
+    let (b1, b2) = b.axes();
+    let mut out = Vec::with_capacity(8);
+    for axis in [a1, a2, b1, b2] {
+        let span = |ps: &[DVec2; 4]| {
+            ps.iter().map(|p| p.dot(axis)).fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)))
+        };
+        let ((la, ha), (lb, hb)) = (span(&pa), span(&pb));
+        if ha.min(hb) - la.max(lb) <= 0.0 {
+            return Vec::new();
+        }
+        // Moving a along +axis until its low end passes b's high end, or along −axis.
+        out.push(axis * (hb - la + CLEARANCE));
+        out.push(-axis * (ha - lb + CLEARANCE));
+    }
+    out.sort_by(|x, y| x.length().total_cmp(&y.length()));
+    out
+}
+
+/// Clearance kept from walls and between pushed-apart objects (m).
+pub const CLEARANCE: f64 = 0.005;
+
+/// The move that brings `b`'s footprint inside `polygon` with `CLEARANCE` to spare, a few steps of
+/// the worst offence first: a footprint corner outside (or too near the boundary), or a polygon
+/// corner inside the footprint (an L-shaped room's inner corner, which all four footprint corners
+/// can miss).
+pub fn inside_push(b: &OBox, polygon: &Polygon) -> DVec2 {
+    let mut total = DVec2::ZERO;
+    for _ in 0..12 {
+        let moved = OBox::new(b.center + total.extend(0.0), b.size, b.yaw);
+        let Some((_, push)) = worst_offence(&moved, polygon) else { break };
+        total += push;
+    }
+    total
+}
+
+/// Whether `b`'s footprint lies inside `polygon` with `CLEARANCE` to spare.
+pub fn fits_inside(b: &OBox, polygon: &Polygon) -> bool {
+    worst_offence(b, polygon).is_none()
+}
+
+/// The worst way `b`'s footprint fails to lie inside `polygon` with `CLEARANCE` to spare (a corner
+/// outside or too near the boundary, a polygon corner inside the footprint): how far, and the move
+/// that mends it; `None` when it fits.
+pub fn worst_offence(b: &OBox, polygon: &Polygon) -> Option<(f64, DVec2)> {
+    let (ax, ay) = b.axes();
+    let half = b.half().truncate();
+    let centre = b.center.truncate();
+    let mut worst: Option<(f64, DVec2)> = None;
+    let mut consider = |excess: f64, push: DVec2| {
+        if excess > 1e-9 && worst.is_none_or(|(e, _)| excess > e) {
+            worst = Some((excess, push));
+        }
+    };
+    for p in b.footprint() {
+        let inside = polygon.contains(p);
+        let q = polygon.nearest_boundary_point(p);
+        let distance = p.distance(q);
+        let excess = if inside { CLEARANCE - distance } else { distance + CLEARANCE };
+        let inward = if inside { p - q } else { q - p };
+        consider(excess, inward.try_normalize().unwrap_or(DVec2::ZERO) * excess);
+    }
+    for &v in &polygon.points {
+        let local = DVec2::new((v - centre).dot(ax), (v - centre).dot(ay));
+        let exit = half - local.abs();
+        if exit.x <= 0.0 || exit.y <= 0.0 {
+            continue;
+        }
+        // Move the footprint off the corner through its nearer side.
+        let push = if exit.x < exit.y {
+            -ax * local.x.signum() * (exit.x + CLEARANCE)
+        } else {
+            -ay * local.y.signum() * (exit.y + CLEARANCE)
+        };
+        consider(exit.x.min(exit.y) + CLEARANCE, push);
+    }
+    worst
+}
+
+/// Largest narrowing of a piece (m).
+pub const MAX_NARROWING: f64 = 0.1;
+
+/// Largest narrowing as a share of the piece's size along that axis.
+pub const MAX_NARROWING_SHARE: f64 = 0.25;
+
+/// The most a piece `size` long along an axis may be cut along it (m): 10 cm and a quarter of it.
+pub fn max_cut(size: f64) -> f64 {
+    MAX_NARROWING.min(MAX_NARROWING_SHARE * size)
+}
+
+/// Whether `after` is narrower than `before` in width and depth by no more than one cut may take.
+pub fn narrowed_within(before: &Object, after: &Object) -> bool {
+    (0..2).all(|k| before.size[k] - after.size[k] <= max_cut(before.size[k]) + 1e-9)
+}
+
+/// Cuts `o` so that the side it would move away from by `m` (world) comes in by `m`, its other
+/// side staying put, if each cut along its own axes is at most 10 cm and a quarter of its size
+/// there. Returns whether it cut.
+pub fn narrow_by(o: &mut Object, m: DVec2) -> bool {
+    let (ax, ay) = o.obox().axes();
+    let cuts = [ax.dot(m), ay.dot(m)];
+    if cuts.iter().zip(o.size).any(|(c, size)| c.abs() > max_cut(size)) {
+        return false;
+    }
+    for (k, c) in cuts.into_iter().enumerate() {
+        o.size[k] -= c.abs();
+    }
+    o.center[0] += m.x * 0.5;
+    o.center[1] += m.y * 0.5;
+    true
+}
+
+/// Whether `o` stands solid to the floor (no legs to put feet between): sitters' and touchers'
+/// shins and feet are in its way too.
+pub fn is_solid(o: &Object) -> bool {
+    !template(o).parts.iter().any(|p| p.role == PartRole::Leg)
+}
+
+/// Takes `cut` (m) off `o`'s depth at its front, but no more than leaves its category's
+/// shallowest real piece; whether it took any.
+pub fn trim_front_within_real(o: &mut Object, cut: f64) -> bool {
+    let cut = cut.min(o.size[1] - size_range(o.category, 1).0);
+    if cut > 1e-3 {
+        trim_front(o, cut);
+    }
+    cut > 1e-3
+}
+
+/// Takes `cut` (m) off `o`'s depth at its front (local +y), its back where it was.
+pub fn trim_front(o: &mut Object, cut: f64) {
+    let (_, ay) = o.obox().axes();
+    o.size[1] -= cut;
+    shift(o, -ay * (cut * 0.5));
+}

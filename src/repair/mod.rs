@@ -1,0 +1,84 @@
+//! Repair (ours): exact, small corrections of a layout after sampling — what the model's
+//! few-centimetre imprecision leaves undone. Generation is `generator`'s job; judging the result is
+//! `sim`'s; repair only changes objects (never people or the floor plan), and asks about bodies
+//! in pieces through the [`Physics`] trait.
+//!
+//! A [`Pipeline`] runs [`RepairStep`]s in order, each in its own file, with the settings of one
+//! [`RepairConfig`] (`config.rs`; `{}` in JSON is the default). The default order:
+//!
+//! | step | does |
+//! |---|---|
+//! | `settle` | contact boxes given to pieces that afford them (a real piece added for a box none can hold), seats turned and fitted to their people, pieces squared and put back against walls, rounds of moves: under their people, off paths, apart, inside |
+//! | `relocate` | a piece holding nobody still in people's way moved to a free spot |
+//! | `bed_swap` | a double bed in people's way becomes the narrowest real double or a single bed |
+//! | `deep_seats` | a chair or sofa too deep for its sitters' knees loses depth at the front |
+//! | `beds_to_sitters` | a bed under its sitters' lower legs is narrowed on their side |
+//! | `sofas_to_sleepers` | a sofa whose sleeper lies behind the seat's middle loses depth at the front |
+//! | `touched_fronts` | a tall piece whose toucher's palm is inside it loses depth at the front |
+//! | `wide_seats` | a sofa whose people overhang its seat grows at that end |
+//! | `fit_into_room` | a piece poking out of the floor plan is moved back or narrowed |
+//! | `narrow_off_paths` | a piece a few centimetres over the walkers' feet is narrowed off them |
+//! | `off_bodies` | a piece holding nobody is pushed or narrowed out of the bones that enter it |
+//! | `left_out` | a piece holding nobody that people still pass through is left out |
+//! | `overlaps` | overlaps that survive are narrowed away, or the smaller piece goes |
+//!
+//! What steps share lives beside them and is not a step: the people and who holds whom
+//! (`occupancy`, `clearance`), new pieces and seat gaps (`completion`), the walls (`walls`) and the
+//! geometry of moves, extents and separations (`helpers`). No step imports another step.
+
+mod bed_swap;
+mod clearance;
+mod completion;
+mod config;
+mod deep_seats;
+mod fit_into_room;
+mod helpers;
+mod left_out;
+mod narrow_off_paths;
+mod occupancy;
+mod off_bodies;
+mod overlaps;
+mod pipeline;
+mod relocate;
+mod settle;
+#[cfg(test)]
+pub(crate) mod tests;
+mod touched_fronts;
+mod walls;
+mod wide_seats;
+
+pub use clearance::Clearance;
+pub use completion::SeatGaps;
+pub use config::{
+    BedSwapConfig, LeftOutConfig, OffBodiesConfig, RelocateConfig, RepairConfig, RepairConfigError, SettleConfig,
+    SofasToSleepersConfig, StepName, WideSeatsConfig,
+};
+pub use occupancy::Occupancy;
+pub use pipeline::{Pipeline, RepairReport, RepairStep, RepairTotals, SettleReport, StepReport, Workspace};
+
+use crate::physics::Physics;
+use crate::scene::Scene;
+
+/// The step called `name`.
+pub fn step(name: StepName) -> Box<dyn RepairStep> {
+    match name {
+        StepName::Settle => Box::new(settle::Settle),
+        StepName::Relocate => Box::new(relocate::Relocate),
+        StepName::BedSwap => Box::new(bed_swap::BedSwap),
+        StepName::DeepSeats => Box::new(deep_seats::DeepSeats),
+        StepName::BedsToSitters => Box::new(deep_seats::BedsToSitters),
+        StepName::SofasToSleepers => Box::new(deep_seats::SofasToSleepers),
+        StepName::TouchedFronts => Box::new(touched_fronts::TouchedFronts),
+        StepName::WideSeats => Box::new(wide_seats::WideSeats),
+        StepName::FitIntoRoom => Box::new(fit_into_room::FitIntoRoom),
+        StepName::NarrowOffPaths => Box::new(narrow_off_paths::NarrowOffPaths),
+        StepName::OffBodies => Box::new(off_bodies::OffBodies),
+        StepName::LeftOut => Box::new(left_out::LeftOut),
+        StepName::Overlaps => Box::new(overlaps::Overlaps),
+    }
+}
+
+/// Repairs `scene`'s objects in place with the steps and settings of `config`.
+pub fn repair_scene(scene: &mut Scene, config: &RepairConfig, physics: &dyn Physics) -> RepairReport {
+    Pipeline::of(config).run(scene, config, physics)
+}

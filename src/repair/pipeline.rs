@@ -1,0 +1,294 @@
+//! The repair pipeline: the [`RepairStep`] trait every step implements, the [`Workspace`] the steps
+//! share while they run (the people, who holds whom, the bones left in pieces, the physics), the
+//! ordered [`Pipeline`] and the typed reports.
+//!
+//! It runs steps; what each step does is in its own file.
+
+use super::config::{RepairConfig, StepName};
+use super::occupancy::Occupancy;
+use crate::physics::{EngineContact, Physics};
+use crate::scene::Scene;
+use serde::Serialize;
+
+/// One repair step: reads and changes the scene's objects, never its people or floor plan.
+pub trait RepairStep: Send + Sync {
+    /// The step's name (its file, its config section).
+    fn name(&self) -> StepName;
+    /// Runs the step on `scene` with what earlier steps left in `work`.
+    fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport;
+}
+
+/// What the steps share while repairing one scene.
+pub struct Workspace<'a> {
+    /// The scene's people, and which object holds which contact box.
+    pub people: Occupancy,
+    /// Whether each object holds anybody, fixed when a step after `settle` first asks
+    /// ([`Workspace::holds`]); `left_out` updates it for the steps after it.
+    holds: Option<Vec<bool>>,
+    /// Bones still inside pieces after `off_bodies` (exact depths), for `left_out`.
+    pub bones: Option<Vec<EngineContact>>,
+    /// Physics, for the steps that ask where bodies enter pieces.
+    pub physics: &'a dyn Physics,
+}
+
+impl<'a> Workspace<'a> {
+    /// The people of `scene`, each contact box given to an object that can hold it.
+    pub fn new(scene: &Scene, config: &RepairConfig, physics: &'a dyn Physics) -> Workspace<'a> {
+        let mut people = Occupancy::of(scene);
+        people.assign(scene, &config.settle);
+        Workspace { people, holds: None, bones: None, physics }
+    }
+
+    /// The people and whether each of the scene's `n` objects holds anybody (fixed on first ask).
+    pub fn holds(&mut self, n: usize) -> (&Occupancy, &mut Vec<bool>) {
+        let people = &self.people;
+        let holds = self.holds.get_or_insert_with(|| people.holding(n));
+        (people, holds)
+    }
+
+    /// Forgets who held whom as of the last ask (a step that reassigns the holders calls this).
+    pub fn reassigned(&mut self) {
+        self.holds = None;
+    }
+}
+
+/// What one step changed.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(tag = "step", rename_all = "snake_case")]
+pub enum StepReport {
+    /// `settle`.
+    Settle(SettleReport),
+    /// `relocate`: pieces moved to a free spot.
+    Relocate {
+        /// Pieces moved.
+        relocated: usize,
+    },
+    /// `bed_swap`: double beds swapped.
+    BedSwap {
+        /// Beds swapped.
+        swapped: usize,
+    },
+    /// `deep_seats`: seats trimmed at the front.
+    DeepSeats {
+        /// Seats trimmed.
+        trimmed: usize,
+    },
+    /// `beds_to_sitters`: beds narrowed on their sitters' side.
+    BedsToSitters {
+        /// Beds narrowed.
+        trimmed: usize,
+    },
+    /// `sofas_to_sleepers`: sofas trimmed at the front.
+    SofasToSleepers {
+        /// Sofas trimmed.
+        trimmed: usize,
+    },
+    /// `touched_fronts`: tall touched pieces trimmed at the front.
+    TouchedFronts {
+        /// Pieces trimmed.
+        trimmed: usize,
+    },
+    /// `wide_seats`: sofas widened.
+    WideSeats {
+        /// Sofas widened.
+        widened: usize,
+    },
+    /// `fit_into_room`: pieces narrowed to fit the floor plan.
+    FitIntoRoom {
+        /// Pieces narrowed.
+        narrowed: usize,
+    },
+    /// `narrow_off_paths`: pieces narrowed off the walkers' feet.
+    NarrowOffPaths {
+        /// Pieces narrowed.
+        narrowed: usize,
+    },
+    /// `off_bodies`: pieces pushed or narrowed out of bones.
+    OffBodies {
+        /// Pieces pushed or narrowed.
+        pushed: usize,
+    },
+    /// `left_out`: pieces left out.
+    LeftOut {
+        /// Pieces left out.
+        left_out: usize,
+    },
+    /// `overlaps`: overlaps narrowed away or resolved by a removal.
+    Overlaps {
+        /// Pieces narrowed.
+        narrowed: usize,
+        /// Pieces removed.
+        removed: usize,
+    },
+}
+
+impl StepReport {
+    /// Pieces the step changed (for `settle`, the changes of every kind it counts).
+    pub fn changed(&self) -> usize {
+        match *self {
+            StepReport::Settle(s) => s.resized + s.turned + s.added + s.squared + s.walled,
+            StepReport::Relocate { relocated: n }
+            | StepReport::BedSwap { swapped: n }
+            | StepReport::DeepSeats { trimmed: n }
+            | StepReport::BedsToSitters { trimmed: n }
+            | StepReport::SofasToSleepers { trimmed: n }
+            | StepReport::TouchedFronts { trimmed: n }
+            | StepReport::WideSeats { widened: n }
+            | StepReport::FitIntoRoom { narrowed: n }
+            | StepReport::NarrowOffPaths { narrowed: n }
+            | StepReport::OffBodies { pushed: n }
+            | StepReport::LeftOut { left_out: n } => n,
+            StepReport::Overlaps { narrowed, removed } => narrowed + removed,
+        }
+    }
+}
+
+/// What `settle` changed.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct SettleReport {
+    /// Rounds run.
+    pub rounds: usize,
+    /// Objects resized to cover a contact box.
+    pub resized: usize,
+    /// Pieces turned to face like the person on them.
+    pub turned: usize,
+    /// Objects added for people nothing held.
+    pub added: usize,
+    /// Pieces turned square to the walls.
+    pub squared: usize,
+    /// Pieces put back against a wall.
+    pub walled: usize,
+    /// Largest total move of one object (m).
+    pub max_move: f64,
+}
+
+/// What repairing one scene changed, step by step in the order they ran.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct RepairReport {
+    /// One report per step run.
+    pub steps: Vec<StepReport>,
+}
+
+impl RepairReport {
+    /// Pieces changed by all steps.
+    pub fn changed(&self) -> usize {
+        self.steps.iter().map(StepReport::changed).sum()
+    }
+
+    /// Every step's counts summed by kind.
+    pub fn totals(&self) -> RepairTotals {
+        let mut t = RepairTotals::default();
+        for s in &self.steps {
+            match *s {
+                StepReport::Settle(r) => {
+                    t.rounds += r.rounds;
+                    t.resized += r.resized;
+                    t.turned += r.turned;
+                    t.added += r.added;
+                    t.squared += r.squared;
+                    t.walled += r.walled;
+                    t.max_move = t.max_move.max(r.max_move);
+                }
+                StepReport::Relocate { relocated } => t.relocated += relocated,
+                StepReport::BedSwap { swapped } => t.swapped += swapped,
+                StepReport::DeepSeats { trimmed }
+                | StepReport::BedsToSitters { trimmed }
+                | StepReport::SofasToSleepers { trimmed }
+                | StepReport::TouchedFronts { trimmed } => t.trimmed += trimmed,
+                StepReport::WideSeats { widened } => t.widened += widened,
+                StepReport::FitIntoRoom { narrowed } | StepReport::NarrowOffPaths { narrowed } => {
+                    t.narrowed += narrowed
+                }
+                StepReport::OffBodies { pushed } => t.pushed += pushed,
+                StepReport::LeftOut { left_out } => t.left_out += left_out,
+                StepReport::Overlaps { narrowed, removed } => {
+                    t.narrowed += narrowed;
+                    t.removed += removed;
+                }
+            }
+        }
+        t
+    }
+}
+
+/// A [`RepairReport`]'s counts summed over its steps, by kind of change.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct RepairTotals {
+    /// Rounds of moves run.
+    pub rounds: usize,
+    /// Pieces resized to cover a contact box.
+    pub resized: usize,
+    /// Pieces turned to face like the person on them.
+    pub turned: usize,
+    /// Pieces added for people nothing held.
+    pub added: usize,
+    /// Pieces turned square to the walls.
+    pub squared: usize,
+    /// Pieces put back against a wall.
+    pub walled: usize,
+    /// Pieces moved to a free spot.
+    pub relocated: usize,
+    /// Double beds swapped.
+    pub swapped: usize,
+    /// Pieces trimmed at the front or on a sitter's side.
+    pub trimmed: usize,
+    /// Sofas widened.
+    pub widened: usize,
+    /// Pieces narrowed (into the room, off paths, out of overlaps).
+    pub narrowed: usize,
+    /// Pieces pushed or narrowed out of bones.
+    pub pushed: usize,
+    /// Pieces left out.
+    pub left_out: usize,
+    /// Pieces removed from overlaps.
+    pub removed: usize,
+    /// Largest total move of one object in `settle` (m).
+    pub max_move: f64,
+}
+
+/// An ordered list of repair steps.
+pub struct Pipeline {
+    steps: Vec<Box<dyn RepairStep>>,
+}
+
+impl Pipeline {
+    /// The steps `config.steps` names, in its order.
+    pub fn of(config: &RepairConfig) -> Pipeline {
+        Pipeline { steps: config.steps.iter().map(|&s| super::step(s)).collect() }
+    }
+
+    /// The names of the steps, in order.
+    pub fn names(&self) -> Vec<StepName> {
+        self.steps.iter().map(|s| s.name()).collect()
+    }
+
+    /// Runs every step on `scene` in order.
+    pub fn run(&self, scene: &mut Scene, config: &RepairConfig, physics: &dyn Physics) -> RepairReport {
+        let mut work = Workspace::new(scene, config, physics);
+        let steps = self.steps.iter().map(|s| s.run(scene, &mut work, config)).collect();
+        RepairReport { steps }
+    }
+}
+
+impl std::iter::Sum for RepairTotals {
+    /// Counts summed over scenes; the largest move is the largest of any.
+    fn sum<I: Iterator<Item = RepairTotals>>(iter: I) -> RepairTotals {
+        iter.fold(RepairTotals::default(), |a, t| RepairTotals {
+            rounds: a.rounds + t.rounds,
+            resized: a.resized + t.resized,
+            turned: a.turned + t.turned,
+            added: a.added + t.added,
+            squared: a.squared + t.squared,
+            walled: a.walled + t.walled,
+            relocated: a.relocated + t.relocated,
+            swapped: a.swapped + t.swapped,
+            trimmed: a.trimmed + t.trimmed,
+            widened: a.widened + t.widened,
+            narrowed: a.narrowed + t.narrowed,
+            pushed: a.pushed + t.pushed,
+            left_out: a.left_out + t.left_out,
+            removed: a.removed + t.removed,
+            max_move: a.max_move.max(t.max_move),
+        })
+    }
+}

@@ -1,0 +1,21 @@
+//! `sim`'s answer to [`crate::physics::Physics`]: exact capsule–box depths and the Rapier replay's
+//! pushes, for guidance and repair, which see physics only through the trait.
+
+use super::{exact_contacts, rapier_pushes};
+use crate::physics::{EngineContact, Physics};
+use crate::scene::Scene;
+use glam::DVec2;
+
+/// The physics `check` itself uses: exact depths (parry) and a Rapier replay.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct SimPhysics;
+
+impl Physics for SimPhysics {
+    fn exact_contacts(&self, scene: &Scene, tolerance: f64) -> Vec<EngineContact> {
+        exact_contacts(scene, tolerance)
+    }
+
+    fn pushes(&self, scene: &Scene, tolerance: f64) -> Vec<(usize, DVec2)> {
+        rapier_pushes(scene, tolerance)
+    }
+}
