@@ -3,7 +3,8 @@
 # (`all` guidance, no repair, seed 0), then repaired by the full pipeline and by the pipeline with
 # each step switched off in turn (a config without it, `shade-sim repair --config`), every folder a
 # row of `shade-sim eval` against the val split; prints a Markdown table (rooms failing `check`,
-# contact IoU, Col_mot, CKL, and the rooms each step's absence costs) and writes OUT_DIR/<room>.json.
+# contact IoU, Col_mot, CKL, the rooms each step's absence costs, and how many rooms' layouts it
+# changes at all) and writes OUT_DIR/<room>.json.
 # Usage: bash scripts/repair_ablation.sh [DATA_DIR] [OUT_DIR] [LIMIT] [ROOMS…]
 #   LIMIT: only the first LIMIT val inputs of each room (0 = all, the default).
 set -euo pipefail
@@ -30,18 +31,20 @@ for room in "${rooms[@]}"; do
             "$steps" "$step" > "$base/configs/without_$step.json"
         $bin --no-progress -q repair "$base/sampled" --out "$base/without_$step" --config "$base/configs/without_$step.json"
         dirs+=("$base/without_$step")
+        echo "without_$step $(diff -rq "$base/all" "$base/without_$step" | wc -l)" >> "$base/changed.txt"
     done
     $bin --no-progress -q eval --pred "${dirs[@]}" --ref "$data/$room/val" --out "$out/$room.json"
-    python3 - "$out/$room.json" "$room" <<'PY'
+    python3 - "$out/$room.json" "$room" "$base/changed.txt" <<'PY'
 import json, sys
 rows = json.load(open(sys.argv[1]))
+changed = dict(line.split() for line in open(sys.argv[3]))
 full = next(r for r in rows if r["name"] == "all")
 fail = lambda r: round(r["physics"]["violating_scenes"] * r["scenes"])
 print(f"\n{sys.argv[2]} (val, {full['scenes']} rooms)\n")
-print("| pipeline | rooms failing check | Δ vs all | contact IoU | Col_mot | CKL |")
-print("|---|---:|---:|---:|---:|---:|")
+print("| pipeline | rooms whose layout differs from all steps' | rooms failing check | Δ vs all | contact IoU | Col_mot | CKL |")
+print("|---|---:|---:|---:|---:|---:|---:|")
 for r in rows:
     name = {"sampled": "no repair", "all": "all steps"}.get(r["name"], r["name"].replace("without_", "without "))
-    print(f"| {name} | {fail(r)} | {fail(r) - fail(full):+d} | {r['contact_iou']:.3f} | {r['col_mot']:.4f} | {r['ckl']:.4f} |")
+    print(f"| {name} | {changed.get(r['name'], '–')} | {fail(r)} | {fail(r) - fail(full):+d} | {r['contact_iou']:.3f} | {r['col_mot']:.4f} | {r['ckl']:.4f} |")
 PY
 done

@@ -68,16 +68,16 @@ pub fn run(args: &RepairArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus>
     if global.json {
         print_json(&reports)?;
     } else if global.quiet == 0 {
-        let moved = reports.iter().filter(|r| r.totals.max_move > 1e-3).count();
+        let moved = reports.iter().filter(|r| r.totals.settle.max_move > 1e-3).count();
         let t: RepairTotals = reports.iter().map(|r| r.totals).sum();
         print_text(&format!(
             "{} scenes repaired into {}: {moved} changed, largest move {:.3} m; objects: {} resized, {} added, \
              {} trimmed, {} widened, {} narrowed, {} left out, {} removed\n",
             reports.len(),
             out_dir.display(),
-            t.max_move,
-            t.resized,
-            t.added,
+            t.settle.max_move,
+            t.settle.resized,
+            t.settle.added,
             t.trimmed,
             t.widened,
             t.narrowed,

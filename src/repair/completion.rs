@@ -386,15 +386,15 @@ mod tests {
     #[test]
     fn repair_seats_every_sitter_of_a_room_without_seats_and_adds_nothing_to_a_complete_one() {
         for (mut scene, _, _) in rooms_with(RoomType::Dining, Action::Sit, &[Group::Chair]) {
-            assert_eq!(repair_with_rounds(&mut scene.clone(), 30).added, 0);
+            assert_eq!(repair_with_rounds(&mut scene.clone(), 30).settle.added, 0);
             scene.objects.retain(|o| !matches!(o.category.group(), Group::Chair | Group::Stool | Group::Sofa));
             let sits: Vec<ContactBox> =
                 Conditions::contact_boxes_of(&scene).into_iter().filter(|b| b.action == Action::Sit).collect();
             assert!(sits.iter().all(|b| contact_iou(&b.obox, &scene.objects) < 0.5));
             let before = scene.objects.len();
             let report = repair_with_rounds(&mut scene, 30);
-            assert!(report.added >= 1 && report.added <= sits.len(), "{report:?}");
-            assert_eq!(scene.objects.len(), before + report.added);
+            assert!(report.settle.added >= 1 && report.settle.added <= sits.len(), "{report:?}");
+            assert_eq!(scene.objects.len(), before + report.settle.added);
             for b in &sits {
                 assert!(contact_iou(&b.obox, &scene.objects) > 0.9, "{}", contact_iou(&b.obox, &scene.objects));
             }

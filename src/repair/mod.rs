@@ -27,6 +27,7 @@
 //! geometry of moves, extents and separations (`helpers`). No step imports another step.
 
 mod bed_swap;
+mod beds_to_sitters;
 mod clearance;
 mod completion;
 mod config;
@@ -41,6 +42,7 @@ mod overlaps;
 mod pipeline;
 mod relocate;
 mod settle;
+mod sofas_to_sleepers;
 #[cfg(test)]
 pub(crate) mod tests;
 mod touched_fronts;
@@ -66,8 +68,8 @@ pub fn step(name: StepName) -> Box<dyn RepairStep> {
         StepName::Relocate => Box::new(relocate::Relocate),
         StepName::BedSwap => Box::new(bed_swap::BedSwap),
         StepName::DeepSeats => Box::new(deep_seats::DeepSeats),
-        StepName::BedsToSitters => Box::new(deep_seats::BedsToSitters),
-        StepName::SofasToSleepers => Box::new(deep_seats::SofasToSleepers),
+        StepName::BedsToSitters => Box::new(beds_to_sitters::BedsToSitters),
+        StepName::SofasToSleepers => Box::new(sofas_to_sleepers::SofasToSleepers),
         StepName::TouchedFronts => Box::new(touched_fronts::TouchedFronts),
         StepName::WideSeats => Box::new(wide_seats::WideSeats),
         StepName::FitIntoRoom => Box::new(fit_into_room::FitIntoRoom),

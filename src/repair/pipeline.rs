@@ -162,6 +162,21 @@ pub struct SettleReport {
     pub max_move: f64,
 }
 
+impl SettleReport {
+    /// Both reports' counts added; the larger of their largest moves.
+    pub fn plus(&self, o: &SettleReport) -> SettleReport {
+        SettleReport {
+            rounds: self.rounds + o.rounds,
+            resized: self.resized + o.resized,
+            turned: self.turned + o.turned,
+            added: self.added + o.added,
+            squared: self.squared + o.squared,
+            walled: self.walled + o.walled,
+            max_move: self.max_move.max(o.max_move),
+        }
+    }
+}
+
 /// What repairing one scene changed, step by step in the order they ran.
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct RepairReport {
@@ -180,15 +195,7 @@ impl RepairReport {
         let mut t = RepairTotals::default();
         for s in &self.steps {
             match *s {
-                StepReport::Settle(r) => {
-                    t.rounds += r.rounds;
-                    t.resized += r.resized;
-                    t.turned += r.turned;
-                    t.added += r.added;
-                    t.squared += r.squared;
-                    t.walled += r.walled;
-                    t.max_move = t.max_move.max(r.max_move);
-                }
+                StepReport::Settle(r) => t.settle = t.settle.plus(&r),
                 StepReport::Relocate { relocated } => t.relocated += relocated,
                 StepReport::BedSwap { swapped } => t.swapped += swapped,
                 StepReport::DeepSeats { trimmed }
@@ -211,21 +218,12 @@ impl RepairReport {
     }
 }
 
-/// A [`RepairReport`]'s counts summed over its steps, by kind of change.
+/// A [`RepairReport`]'s counts summed over its steps, by kind of change (JSON: one flat object).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
 pub struct RepairTotals {
-    /// Rounds of moves run.
-    pub rounds: usize,
-    /// Pieces resized to cover a contact box.
-    pub resized: usize,
-    /// Pieces turned to face like the person on them.
-    pub turned: usize,
-    /// Pieces added for people nothing held.
-    pub added: usize,
-    /// Pieces turned square to the walls.
-    pub squared: usize,
-    /// Pieces put back against a wall.
-    pub walled: usize,
+    /// What `settle` changed (rounds, resized, turned, added, squared, walled, max_move).
+    #[serde(flatten)]
+    pub settle: SettleReport,
     /// Pieces moved to a free spot.
     pub relocated: usize,
     /// Double beds swapped.
@@ -242,8 +240,23 @@ pub struct RepairTotals {
     pub left_out: usize,
     /// Pieces removed from overlaps.
     pub removed: usize,
-    /// Largest total move of one object in `settle` (m).
-    pub max_move: f64,
+}
+
+impl std::iter::Sum for RepairTotals {
+    /// Counts summed over scenes; the largest move is the largest of any.
+    fn sum<I: Iterator<Item = RepairTotals>>(iter: I) -> RepairTotals {
+        iter.fold(RepairTotals::default(), |a, t| RepairTotals {
+            settle: a.settle.plus(&t.settle),
+            relocated: a.relocated + t.relocated,
+            swapped: a.swapped + t.swapped,
+            trimmed: a.trimmed + t.trimmed,
+            widened: a.widened + t.widened,
+            narrowed: a.narrowed + t.narrowed,
+            pushed: a.pushed + t.pushed,
+            left_out: a.left_out + t.left_out,
+            removed: a.removed + t.removed,
+        })
+    }
 }
 
 /// An ordered list of repair steps.
@@ -267,28 +280,5 @@ impl Pipeline {
         let mut work = Workspace::new(scene, config, physics);
         let steps = self.steps.iter().map(|s| s.run(scene, &mut work, config)).collect();
         RepairReport { steps }
-    }
-}
-
-impl std::iter::Sum for RepairTotals {
-    /// Counts summed over scenes; the largest move is the largest of any.
-    fn sum<I: Iterator<Item = RepairTotals>>(iter: I) -> RepairTotals {
-        iter.fold(RepairTotals::default(), |a, t| RepairTotals {
-            rounds: a.rounds + t.rounds,
-            resized: a.resized + t.resized,
-            turned: a.turned + t.turned,
-            added: a.added + t.added,
-            squared: a.squared + t.squared,
-            walled: a.walled + t.walled,
-            relocated: a.relocated + t.relocated,
-            swapped: a.swapped + t.swapped,
-            trimmed: a.trimmed + t.trimmed,
-            widened: a.widened + t.widened,
-            narrowed: a.narrowed + t.narrowed,
-            pushed: a.pushed + t.pushed,
-            left_out: a.left_out + t.left_out,
-            removed: a.removed + t.removed,
-            max_move: a.max_move.max(t.max_move),
-        })
     }
 }

@@ -34,15 +34,15 @@ fn a_clean_room_stays_as_it_is() {
         let r = repair_with_rounds(&mut scene, 30);
         // The data lets a sitter's back press up to ~1 cm into a backrest; repair keeps it
         // 1 cm clear, so a seat may move back by about 2 cm. Nothing else moves.
-        assert!(r.max_move < 0.025, "{room}: {r:?}");
-        assert_eq!((r.added, r.squared, r.narrowed, r.removed), (0, 0, 0, 0), "{room}");
+        assert!(r.settle.max_move < 0.025, "{room}: {r:?}");
+        assert_eq!((r.settle.added, r.settle.squared, r.narrowed, r.removed), (0, 0, 0, 0), "{room}");
         assert_eq!(scene.objects.len(), before.objects.len());
         // Seats already face their sitters: turning them changes nothing.
         for (o, b) in scene.objects.iter().zip(&before.objects) {
             let d = (o.yaw - b.yaw).rem_euclid(std::f64::consts::TAU);
             assert!(d.min(std::f64::consts::TAU - d) < 0.05, "{room}: {} turned from {} to {}", o.id, b.yaw, o.yaw);
         }
-        turned += r.turned;
+        turned += r.settle.turned;
     }
     assert!(turned > 0, "some seat was checked");
 }
@@ -74,7 +74,7 @@ fn every_piece_ends_square_to_the_walls() {
         o.yaw += 0.05 + 0.1 * k as f64 % 0.6 - 0.3 + std::f64::consts::TAU * (k % 3) as f64;
     }
     let r = repair_with_rounds(&mut scene, 30);
-    assert!(r.squared >= scene.objects.len() - 1, "{r:?}");
+    assert!(r.settle.squared >= scene.objects.len() - 1, "{r:?}");
     for o in &scene.objects {
         let off = o.yaw.rem_euclid(std::f64::consts::FRAC_PI_2);
         assert!(off.min(std::f64::consts::FRAC_PI_2 - off) < 1e-9, "{} at {}", o.id, o.yaw);
@@ -95,7 +95,7 @@ fn a_wardrobe_left_in_the_middle_of_the_room_goes_back_to_a_wall() {
         yaw: 0.2,
     }];
     let r = repair_with_rounds(&mut scene, 30);
-    assert_eq!((r.squared, r.walled), (1, 1), "{r:?}");
+    assert_eq!((r.settle.squared, r.settle.walled), (1, 1), "{r:?}");
     // Square, its back (local −y) 5 cm from the south wall, the nearest one behind or in front.
     let o = &scene.objects[0];
     assert!(o.yaw.abs() < 1e-12, "{o:?}");
@@ -134,14 +134,14 @@ fn a_diagonal_bed_too_wide_for_its_room_is_squared_and_a_slightly_long_one_narro
     };
     scene.objects = vec![bed(0.7, [1.4, 2.0, 0.5])];
     let r = repair_with_rounds(&mut scene, 30);
-    assert_eq!(r.squared, 1, "{r:?}");
+    assert_eq!(r.settle.squared, 1, "{r:?}");
     assert_eq!(scene.objects[0].yaw, 0.0);
     assert_eq!(scene.objects[0].size, [1.4, 2.0, 0.5]);
     assert!(fits_inside(&scene.objects[0].obox(), &scene.floor_plan.polygon()));
     // Square already but 2.25 m wide in 2.2 m: narrowed by the 5 cm and twice the clearance.
     scene.objects = vec![bed(0.0, [2.25, 1.8, 0.5])];
     let r = repair_with_rounds(&mut scene, 30);
-    assert_eq!((r.squared, r.narrowed), (0, 1), "{r:?}");
+    assert_eq!((r.settle.squared, r.narrowed), (0, 1), "{r:?}");
     let w = scene.objects[0].size[0];
     assert!(w < 2.2 - 2.0 * CLEARANCE + 1e-9 && w > 2.15, "{w}");
     assert!(fits_inside(&scene.objects[0].obox(), &scene.floor_plan.polygon()));
@@ -173,7 +173,7 @@ fn a_wardrobe_whose_nearest_wall_is_a_walkway_goes_to_the_wall_behind_it() {
     scene.humans = vec![walk.into_human("h0")];
     scene.objects = vec![start];
     let r = repair_with_rounds(&mut scene, 30);
-    assert_eq!(r.walled, 1, "{r:?}");
+    assert_eq!(r.settle.walled, 1, "{r:?}");
     assert_eq!(scene.objects[0], wardrobe([2.0, 3.5 - 0.3 - 0.05, 1.0], std::f64::consts::PI), "{r:?}");
 }
 
@@ -337,7 +337,7 @@ fn a_sitter_under_a_table_top_gets_a_seat_though_the_table_covers_their_box() {
     assert!(contact_iou(&third.obox, &scene.objects) > 0.9, "the table covers the box");
     let r = repair_with_rounds(&mut scene, 30);
     let seats: Vec<Object> = scene.objects.iter().filter(|o| o.category.affords(Action::Sit)).cloned().collect();
-    assert!(r.added >= 1, "{r:?}");
+    assert!(r.settle.added >= 1, "{r:?}");
     assert!(contact_iou(&third.obox, &seats) >= SettleConfig::default().covered, "{r:?} {:?}", scene.objects);
 }
 
