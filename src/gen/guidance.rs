@@ -85,7 +85,10 @@ impl GuidanceConfig {
                 "obj" | "object" => cfg.object = full.object,
                 "phys" => cfg.phys = Self::PHYS_WEIGHT,
                 other => {
-                    return Err(format!("unknown guidance term {other:?} (none, all, mot, bound, obj, phys)"));
+                    return Err(format!(
+                        "unknown guidance term {other:?} (none, all, mot, bound, obj, phys; repair after sampling is \
+                         separate: --no-repair, --repair-config)"
+                    ));
                 }
             }
         }

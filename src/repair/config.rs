@@ -93,6 +93,9 @@ pub struct RepairConfig {
     pub steps: Vec<StepName>,
     /// `settle`'s settings.
     pub settle: SettleConfig,
+    /// How far a step may narrow a piece (`fit_into_room`, `narrow_off_paths`, `off_bodies`,
+    /// `overlaps`).
+    pub narrowing: NarrowingConfig,
     /// `relocate`'s settings.
     pub relocate: RelocateConfig,
     /// `bed_swap`'s settings.
@@ -112,6 +115,7 @@ impl Default for RepairConfig {
         RepairConfig {
             steps: StepName::ALL.to_vec(),
             settle: SettleConfig::default(),
+            narrowing: NarrowingConfig::default(),
             relocate: RelocateConfig::default(),
             bed_swap: BedSwapConfig::default(),
             sofas_to_sleepers: SofasToSleepersConfig::default(),
@@ -148,6 +152,12 @@ pub struct SettleConfig {
     pub covered: f64,
     /// Width of one person's place on a sofa or bed (m, default 0.55).
     pub place_width: f64,
+    /// Share of a pass's rounds in which contacts pull their holders (default 2/3; the rest leave
+    /// contacts where they are).
+    pub contact_rounds: f64,
+    /// Last rounds of a pass that leave paths alone, so the layout ends separated and inside
+    /// (default 5).
+    pub pathless_rounds: usize,
 }
 
 impl Default for SettleConfig {
@@ -164,7 +174,26 @@ impl Default for SettleConfig {
             anchored_mobility: 0.2,
             covered: 0.5,
             place_width: 0.55,
+            contact_rounds: 2.0 / 3.0,
+            pathless_rounds: 5,
         }
+    }
+}
+
+/// How far a piece may be narrowed: in each of width and depth, at most `max` and `max_share`
+/// of its size there.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct NarrowingConfig {
+    /// Largest cut (m, default 0.1).
+    pub max: f64,
+    /// Largest cut as a share of the piece's size (default 0.25).
+    pub max_share: f64,
+}
+
+impl Default for NarrowingConfig {
+    fn default() -> NarrowingConfig {
+        NarrowingConfig { max: 0.1, max_share: 0.25 }
     }
 }
 
@@ -304,6 +333,7 @@ impl RepairConfig {
             ("settle.max_assign_distance", s.max_assign_distance),
             ("settle.max_step", s.max_step),
             ("settle.place_width", s.place_width),
+            ("narrowing.max", self.narrowing.max),
             ("relocate.max_move", self.relocate.max_move),
             ("bed_swap.blocked_area", self.bed_swap.blocked_area),
             ("sofas_to_sleepers.off_middle", self.sofas_to_sleepers.off_middle),
@@ -317,7 +347,13 @@ impl RepairConfig {
                 return Err((field.into(), format!("{v} is not a length between 0 and 100")));
             }
         }
-        for (field, v) in [("settle.anchored_mobility", s.anchored_mobility), ("settle.covered", s.covered)] {
+        let shares = [
+            ("settle.anchored_mobility", s.anchored_mobility),
+            ("settle.covered", s.covered),
+            ("settle.contact_rounds", s.contact_rounds),
+            ("narrowing.max_share", self.narrowing.max_share),
+        ];
+        for (field, v) in shares {
             if !(v.is_finite() && (0.0..=1.0).contains(&v)) {
                 return Err((field.into(), format!("{v} is not a share between 0 and 1")));
             }
@@ -329,7 +365,12 @@ impl RepairConfig {
         if !(step.is_finite() && step >= 0.01 && step <= self.relocate.max_move.max(0.01)) {
             return Err(("relocate.grid_step".into(), format!("{step} is not between 0.01 m and relocate.max_move")));
         }
-        for (field, n) in [("settle.rounds", s.rounds), ("off_bodies.rounds", self.off_bodies.rounds)] {
+        let counts = [
+            ("settle.rounds", s.rounds),
+            ("settle.pathless_rounds", s.pathless_rounds),
+            ("off_bodies.rounds", self.off_bodies.rounds),
+        ];
+        for (field, n) in counts {
             if n > MAX_ROUNDS {
                 return Err((field.into(), format!("{n} rounds is more than {MAX_ROUNDS}")));
             }

@@ -3,7 +3,7 @@
 //! out (at most 10 cm and a quarter of its size, [`narrow_by`]) if that makes it fit, an L-shaped
 //! room's inner corner included ([`worst_offence`]).
 
-use super::config::{RepairConfig, StepName};
+use super::config::{NarrowingConfig, RepairConfig, StepName};
 use super::helpers::{containment_shift, fits_inside, inside_push, narrow_by, shift, worst_offence};
 use super::occupancy::Occupancy;
 use super::pipeline::{RepairStep, StepReport, Workspace};
@@ -19,15 +19,15 @@ impl RepairStep for FitIntoRoom {
         StepName::FitIntoRoom
     }
 
-    fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, _config: &RepairConfig) -> StepReport {
-        StepReport::FitIntoRoom { narrowed: fit_into_room(scene, &work.people) }
+    fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport {
+        StepReport::FitIntoRoom { narrowed: fit_into_room(scene, &work.people, &config.narrowing) }
     }
 }
 
 /// Moves every piece the rounds left poking out of the floor plan back over the contact boxes it
 /// holds and inside; where it still does not fit, narrows it by what sticks out (at most 10 cm and
 /// a quarter of its size) if that makes it fit. Returns how many pieces were narrowed.
-fn fit_into_room(scene: &mut Scene, people: &Occupancy) -> usize {
+fn fit_into_room(scene: &mut Scene, people: &Occupancy, limits: &NarrowingConfig) -> usize {
     let polygon = scene.floor_plan.polygon();
     let mut narrowed = 0;
     for i in 0..scene.objects.len() {
@@ -56,7 +56,7 @@ fn fit_into_room(scene: &mut Scene, people: &Occupancy) -> usize {
                     narrowed += 1;
                     break;
                 }
-                Some((_, push)) if narrow_by(&mut cut, push) => {}
+                Some((_, push)) if narrow_by(&mut cut, push, limits) => {}
                 Some(_) => break,
             }
         }

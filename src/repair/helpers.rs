@@ -7,6 +7,7 @@
 //! Steps import these; they decide nothing and read no configuration but what they are given.
 
 use super::completion::{SeatGaps, TOP_TOUCH_HEIGHT};
+use super::config::NarrowingConfig;
 use super::occupancy::Occupancy;
 use crate::furniture::{PartRole, size_range, template};
 use crate::geom::{OBox, Polygon, facing};
@@ -230,29 +231,24 @@ pub fn worst_offence(b: &OBox, polygon: &Polygon) -> Option<(f64, DVec2)> {
     worst
 }
 
-/// Largest narrowing of a piece (m).
-pub const MAX_NARROWING: f64 = 0.1;
-
-/// Largest narrowing as a share of the piece's size along that axis.
-pub const MAX_NARROWING_SHARE: f64 = 0.25;
-
-/// The most a piece `size` long along an axis may be cut along it (m): 10 cm and a quarter of it.
-pub fn max_cut(size: f64) -> f64 {
-    MAX_NARROWING.min(MAX_NARROWING_SHARE * size)
+/// The most a piece `size` long along an axis may be cut along it (m; by default 10 cm and a
+/// quarter of it).
+pub fn max_cut(size: f64, limits: &NarrowingConfig) -> f64 {
+    limits.max.min(limits.max_share * size)
 }
 
 /// Whether `after` is narrower than `before` in width and depth by no more than one cut may take.
-pub fn narrowed_within(before: &Object, after: &Object) -> bool {
-    (0..2).all(|k| before.size[k] - after.size[k] <= max_cut(before.size[k]) + 1e-9)
+pub fn narrowed_within(before: &Object, after: &Object, limits: &NarrowingConfig) -> bool {
+    (0..2).all(|k| before.size[k] - after.size[k] <= max_cut(before.size[k], limits) + 1e-9)
 }
 
 /// Cuts `o` so that the side it would move away from by `m` (world) comes in by `m`, its other
-/// side staying put, if each cut along its own axes is at most 10 cm and a quarter of its size
-/// there. Returns whether it cut.
-pub fn narrow_by(o: &mut Object, m: DVec2) -> bool {
+/// side staying put, if each cut along its own axes is at most [`max_cut`] there. Returns whether
+/// it cut.
+pub fn narrow_by(o: &mut Object, m: DVec2, limits: &NarrowingConfig) -> bool {
     let (ax, ay) = o.obox().axes();
     let cuts = [ax.dot(m), ay.dot(m)];
-    if cuts.iter().zip(o.size).any(|(c, size)| c.abs() > max_cut(size)) {
+    if cuts.iter().zip(o.size).any(|(c, size)| c.abs() > max_cut(size, limits)) {
         return false;
     }
     for (k, c) in cuts.into_iter().enumerate() {

@@ -52,8 +52,8 @@ mod wide_seats;
 pub use clearance::Clearance;
 pub use completion::SeatGaps;
 pub use config::{
-    BedSwapConfig, LeftOutConfig, OffBodiesConfig, RelocateConfig, RepairConfig, RepairConfigError, SettleConfig,
-    SofasToSleepersConfig, StepName, WideSeatsConfig,
+    BedSwapConfig, LeftOutConfig, NarrowingConfig, OffBodiesConfig, RelocateConfig, RepairConfig, RepairConfigError,
+    SettleConfig, SofasToSleepersConfig, StepName, WideSeatsConfig,
 };
 pub use occupancy::Occupancy;
 pub use pipeline::{Pipeline, RepairReport, RepairStep, RepairTotals, SettleReport, StepReport, Workspace};

@@ -3,7 +3,7 @@
 //! most 10 cm and a quarter of the piece clears every covered pixel; a holder only as far as its
 //! people stay on the part they must be on (a bed's foot end off a walkway beside its sleeper).
 
-use super::config::{RepairConfig, StepName};
+use super::config::{NarrowingConfig, RepairConfig, StepName};
 use super::helpers::{keeps_its_people, narrow_by};
 use super::pipeline::{RepairStep, StepReport, Workspace};
 use crate::human::Conditions;
@@ -19,9 +19,9 @@ impl RepairStep for NarrowOffPaths {
         StepName::NarrowOffPaths
     }
 
-    fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, _config: &RepairConfig) -> StepReport {
+    fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport {
         let people = &work.people;
-        let narrowed = narrow_off_paths(scene, &people.cond, |i, o| keeps_its_people(people, i, o));
+        let narrowed = narrow_off_paths(scene, &people.cond, &config.narrowing, |i, o| keeps_its_people(people, i, o));
         StepReport::NarrowOffPaths { narrowed }
     }
 }
@@ -30,7 +30,12 @@ impl RepairStep for NarrowOffPaths {
 /// counts), where cutting one side by at most 10 cm and a quarter of the piece clears every
 /// covered pixel and the narrowed piece `keeps` its people (`keeps(i, narrowed)`: a holder's
 /// people still on the part they must be on). Returns how many it narrowed.
-pub(super) fn narrow_off_paths(scene: &mut Scene, cond: &Conditions, keeps: impl Fn(usize, &Object) -> bool) -> usize {
+pub(super) fn narrow_off_paths(
+    scene: &mut Scene,
+    cond: &Conditions,
+    limits: &NarrowingConfig,
+    keeps: impl Fn(usize, &Object) -> bool,
+) -> usize {
     let (window, free) = (&cond.window, &cond.free_space);
     let mut narrowed = 0;
     for (i, o) in scene.objects.iter_mut().enumerate() {
@@ -61,7 +66,7 @@ pub(super) fn narrow_off_paths(scene: &mut Scene, cond: &Conditions, keeps: impl
         ];
         let (cut, dir) = cuts.into_iter().min_by(|a, b| a.0.total_cmp(&b.0)).expect("four sides");
         let mut cand = o.clone();
-        if narrow_by(&mut cand, dir * cut) && keeps(i, &cand) {
+        if narrow_by(&mut cand, dir * cut, limits) && keeps(i, &cand) {
             *o = cand;
             narrowed += 1;
         }

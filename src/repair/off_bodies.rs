@@ -14,7 +14,7 @@
 //! Pieces that hold people stay where repair put them; hanging pieces are not moved.
 
 use super::clearance::Clearance;
-use super::config::{OffBodiesConfig, RepairConfig, StepName};
+use super::config::{NarrowingConfig, OffBodiesConfig, RepairConfig, StepName};
 use super::helpers::{fits_inside, is_solid, narrow_by, narrowed_within, shift};
 use super::pipeline::{RepairStep, StepReport, Workspace};
 use crate::geom::intersection_volume;
@@ -32,6 +32,7 @@ fn push_off_bodies(
     holds: &[bool],
     physics: &dyn Physics,
     cfg: &OffBodiesConfig,
+    limits: &NarrowingConfig,
 ) -> (usize, Vec<EngineContact>) {
     let before = scene.objects.clone();
     let first = physics.exact_contacts(scene, PHYS_TOLERANCE);
@@ -66,7 +67,7 @@ fn push_off_bodies(
                 // Wedged in: the side the bones enter comes in instead (at most 10 cm and a
                 // quarter of the piece in all), which keeps it inside, apart and out of the way.
                 let mut cut = o.clone();
-                if !narrow_by(&mut cut, push) || !narrowed_within(&before[i], &cut) {
+                if !narrow_by(&mut cut, push, limits) || !narrowed_within(&before[i], &cut, limits) {
                     continue;
                 }
                 scene.objects[i] = cut;
@@ -129,7 +130,8 @@ impl RepairStep for OffBodies {
     fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport {
         let physics = work.physics;
         let (people, holds) = work.holds(scene.objects.len());
-        let (pushed, bones) = push_off_bodies(scene, &people.clearance, holds, physics, &config.off_bodies);
+        let (pushed, bones) =
+            push_off_bodies(scene, &people.clearance, holds, physics, &config.off_bodies, &config.narrowing);
         work.bones = Some(bones);
         StepReport::OffBodies { pushed }
     }
@@ -185,9 +187,31 @@ mod tests {
         let before = scene.objects[0].clone();
         let clearance = clearance_of(&scene);
         // Holding someone: it stays.
-        assert_eq!(push_off_bodies(&mut scene, &clearance, &[true], &SimPhysics, &OffBodiesConfig::default()).0, 0);
+        assert_eq!(
+            push_off_bodies(
+                &mut scene,
+                &clearance,
+                &[true],
+                &SimPhysics,
+                &OffBodiesConfig::default(),
+                &NarrowingConfig::default()
+            )
+            .0,
+            0
+        );
         assert_eq!(scene.objects[0], before);
-        assert_eq!(push_off_bodies(&mut scene, &clearance, &[false], &SimPhysics, &OffBodiesConfig::default()).0, 1);
+        assert_eq!(
+            push_off_bodies(
+                &mut scene,
+                &clearance,
+                &[false],
+                &SimPhysics,
+                &OffBodiesConfig::default(),
+                &NarrowingConfig::default()
+            )
+            .0,
+            1
+        );
         let o = &scene.objects[0];
         let m = DVec2::new(o.center[0] - before.center[0], o.center[1] - before.center[1]);
         // One push, straight away from the person (south), by the depth plus 1 cm; size unchanged.
@@ -206,7 +230,18 @@ mod tests {
         assert_eq!(again, depth);
         let before = scene.objects[0].clone();
         let clearance = clearance_of(&scene);
-        assert_eq!(push_off_bodies(&mut scene, &clearance, &[false], &SimPhysics, &OffBodiesConfig::default()).0, 1);
+        assert_eq!(
+            push_off_bodies(
+                &mut scene,
+                &clearance,
+                &[false],
+                &SimPhysics,
+                &OffBodiesConfig::default(),
+                &NarrowingConfig::default()
+            )
+            .0,
+            1
+        );
         let o = &scene.objects[0];
         // Its back stays at the wall, its front comes in by the push's southward part.
         assert!((o.center[1] - o.size[1] * 0.5 - back).abs() < 1e-9, "{o:?}");

@@ -142,7 +142,7 @@ fn settle_rounds(scene: &mut Scene, people: &Occupancy, cfg: &SettleConfig, repo
         // The last third of the rounds leaves the contacts where they are, the last five the paths.
         let mut moves = vec![DVec2::ZERO; scene.objects.len()];
         let mut counts = vec![0usize; scene.objects.len()];
-        if round * 3 < rounds * 2 {
+        if (round as f64) < rounds as f64 * cfg.contact_rounds {
             for (b, i) in holders {
                 moves[*i] += containment_shift(&cond.contact_boxes[*b], &gaps[*b], &scene.objects[*i]);
                 counts[*i] += 1;
@@ -150,7 +150,7 @@ fn settle_rounds(scene: &mut Scene, people: &Occupancy, cfg: &SettleConfig, repo
         }
         for (i, o) in scene.objects.iter_mut().enumerate() {
             shift(o, (moves[i] / counts[i].max(1) as f64).clamp_length_max(cfg.max_step));
-            if round + 5 < rounds {
+            if round + cfg.pathless_rounds < rounds {
                 // A holder gives way to walkers only as far as its people stay on it.
                 let push = within_slack(o, &people.held_by(i), path_push(o, clearance, cfg.max_step));
                 shift(o, push.clamp_length_max(cfg.max_step));

@@ -1,7 +1,7 @@
 //! End-to-end tests of the default repair pipeline on generated rooms.
 
 use super::completion::SeatGaps;
-use super::config::SettleConfig;
+use super::config::{NarrowingConfig, SettleConfig};
 use super::helpers::{
     CLEARANCE, containment_shift, fits_inside, footprint_separations, keeps_its_people, narrow_by, shift,
 };
@@ -199,7 +199,7 @@ fn a_piece_a_few_centimetres_over_the_walkers_feet_is_narrowed_off_them() {
     };
     // Its +x side 4 cm past the column's centres: cut back to half a pixel short of them.
     scene.objects = vec![cabinet(x + 0.04 - 0.4)];
-    assert_eq!(narrow_off_paths(&mut scene, &cond, |_, _| true), 1);
+    assert_eq!(narrow_off_paths(&mut scene, &cond, &NarrowingConfig::default(), |_, _| true), 1);
     let o = &scene.objects[0];
     assert!((o.center[0] + o.size[0] * 0.5 - (x - w.pixel() * 0.5)).abs() < 1e-9, "{o:?}");
     assert!((o.center[0] - o.size[0] * 0.5 - (x + 0.04 - 0.8)).abs() < 1e-9, "the far side stays");
@@ -215,7 +215,7 @@ fn a_piece_a_few_centimetres_over_the_walkers_feet_is_narrowed_off_them() {
     let mut people = Occupancy::of(&held);
     people.holders = vec![(0, 0)];
     let (mut cut, mut cut_more) = (held.objects[0].clone(), held.objects[0].clone());
-    assert!(narrow_by(&mut cut, DVec2::new(-0.04, 0.0)));
+    assert!(narrow_by(&mut cut, DVec2::new(-0.04, 0.0), &NarrowingConfig::default()));
     cut_more.size[0] -= 0.19;
     cut_more.center[0] -= 0.095;
     assert!(keeps_its_people(&people, 0, &held.objects[0]), "held at first");
@@ -223,7 +223,7 @@ fn a_piece_a_few_centimetres_over_the_walkers_feet_is_narrowed_off_them() {
     // 20 cm over: left alone; a piece whose people the cut would leave: left alone.
     for (center, keeps) in [(x + 0.2 - 0.4, true), (x + 0.04 - 0.4, false)] {
         scene.objects = vec![cabinet(center)];
-        assert_eq!(narrow_off_paths(&mut scene, &cond, |_, _| keeps), 0);
+        assert_eq!(narrow_off_paths(&mut scene, &cond, &NarrowingConfig::default(), |_, _| keeps), 0);
         assert_eq!(scene.objects[0], cabinet(center));
     }
 }
