@@ -4,6 +4,11 @@
 //!
 //! It only holds settings; the steps are in their own files and the order they run in is
 //! [`StepName::ALL`] unless `steps` says otherwise.
+//!
+//! Not here yet (documented constants beside the code that uses them, to move in next): the
+//! geometric conventions read off the data — `helpers::{CLEARANCE, FRONT_TOUCH_SLACK,
+//! BED_EDGE_OVERHANG, BED_EDGE_BAND}`, `completion`'s seat margins and `TOP_TOUCH_HEIGHT`, the
+//! walls' `FACING_SHARE` and `SPOT_STEP`.
 
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};

@@ -32,7 +32,8 @@
 //! still less than half covered by pieces that can hold it (a table top over a sitter's seat does
 //! not count) after that gets a new piece and a second pass of rounds.
 //!
-//! The later steps (each in its own file) finish what the rounds leave.
+//! The numbers above are [`SettleConfig`]'s defaults. The later steps (each in its own file)
+//! finish what the rounds leave.
 
 use super::clearance::Clearance;
 use super::completion::{SeatGaps, TOP_TOUCH_HEIGHT, height_within, support_for};
