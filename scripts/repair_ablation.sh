@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # What each repair step is worth: the val split's inputs sampled once with the shipped models
 # (`all` guidance, no repair, seed 0), then repaired by the full pipeline and by the pipeline with
-# each step switched off in turn (a config without it, `shade-sim repair --config`), every folder a
+# each step switched off in turn (a config without it, `shade-sim repair --config`), and by settle
+# without each of its parts (completion, squaring, walls), every folder a
 # row of `shade-sim eval` against the val split; prints a Markdown table (rooms failing `check`,
 # contact IoU, Col_mot, CKL, the rooms each step's absence costs, and how many rooms' layouts it
 # changes at all) and writes OUT_DIR/<room>.json.
@@ -33,6 +34,14 @@ for room in "${rooms[@]}"; do
         dirs+=("$base/without_$step")
         echo "without_$step $(diff -rq "$base/all" "$base/without_$step" | wc -l)" >> "$base/changed.txt"
     done
+    # settle's own parts, switched off in its config section.
+    for part in complete square walls; do
+        echo "{\"settle\": {\"$part\": false}}" > "$base/configs/settle_without_$part.json"
+        $bin --no-progress -q repair "$base/sampled" --out "$base/settle_without_$part" \
+            --config "$base/configs/settle_without_$part.json"
+        dirs+=("$base/settle_without_$part")
+        echo "settle_without_$part $(diff -rq "$base/all" "$base/settle_without_$part" | wc -l)" >> "$base/changed.txt"
+    done
     $bin --no-progress -q eval --pred "${dirs[@]}" --ref "$data/$room/val" --out "$out/$room.json"
     python3 - "$out/$room.json" "$room" "$base/changed.txt" <<'PY'
 import json, sys
@@ -44,7 +53,7 @@ print(f"\n{sys.argv[2]} (val, {full['scenes']} rooms)\n")
 print("| pipeline | rooms whose layout differs from all steps' | rooms failing check | Δ vs all | contact IoU | Col_mot | CKL |")
 print("|---|---:|---:|---:|---:|---:|---:|")
 for r in rows:
-    name = {"sampled": "no repair", "all": "all steps"}.get(r["name"], r["name"].replace("without_", "without "))
+    name = {"sampled": "no repair", "all": "all steps"}.get(r["name"], r["name"].replace("_without_", " without ").replace("without_", "without "))
     print(f"| {name} | {changed.get(r['name'], '–')} | {fail(r)} | {fail(r) - fail(full):+d} | {r['contact_iou']:.3f} | {r['col_mot']:.4f} | {r['ckl']:.4f} |")
 PY
 done
