@@ -7,8 +7,7 @@
 //!
 //! Not here yet (documented constants beside the code that uses them, to move in next): the
 //! geometric conventions read off the data — `helpers::{CLEARANCE, FRONT_TOUCH_SLACK,
-//! BED_EDGE_OVERHANG, BED_EDGE_BAND}`, `completion`'s seat margins and `TOP_TOUCH_HEIGHT`, the
-//! walls' `FACING_SHARE` and `SPOT_STEP`.
+//! BED_EDGE_OVERHANG, BED_EDGE_BAND}`, `completion`'s seat margins and `TOP_TOUCH_HEIGHT`.
 
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -101,6 +100,8 @@ pub struct RepairConfig {
     /// How far a step may narrow a piece (`fit_into_room`, `narrow_off_paths`, `off_bodies`,
     /// `overlaps`).
     pub narrowing: NarrowingConfig,
+    /// Where a piece stands against a wall (`settle`, `relocate`).
+    pub walls: WallsConfig,
     /// `relocate`'s settings.
     pub relocate: RelocateConfig,
     /// `bed_swap`'s settings.
@@ -121,6 +122,7 @@ impl Default for RepairConfig {
             steps: StepName::ALL.to_vec(),
             settle: SettleConfig::default(),
             narrowing: NarrowingConfig::default(),
+            walls: WallsConfig::default(),
             relocate: RelocateConfig::default(),
             bed_swap: BedSwapConfig::default(),
             sofas_to_sleepers: SofasToSleepersConfig::default(),
@@ -199,6 +201,22 @@ pub struct NarrowingConfig {
 impl Default for NarrowingConfig {
     fn default() -> NarrowingConfig {
         NarrowingConfig { max: 0.1, max_share: 0.25 }
+    }
+}
+
+/// Which walls a piece can stand against, and where along them.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct WallsConfig {
+    /// Share of a piece's side a wall must face to count as behind it (default 0.6).
+    pub facing_share: f64,
+    /// Spacing of the spots along each wall a free piece may move to (m, default 0.1).
+    pub spot_step: f64,
+}
+
+impl Default for WallsConfig {
+    fn default() -> WallsConfig {
+        WallsConfig { facing_share: 0.6, spot_step: 0.1 }
     }
 }
 
@@ -357,6 +375,7 @@ impl RepairConfig {
             ("settle.covered", s.covered),
             ("settle.contact_rounds", s.contact_rounds),
             ("narrowing.max_share", self.narrowing.max_share),
+            ("walls.facing_share", self.walls.facing_share),
         ];
         for (field, v) in shares {
             if !(v.is_finite() && (0.0..=1.0).contains(&v)) {
@@ -365,6 +384,10 @@ impl RepairConfig {
         }
         if s.place_width < 0.1 {
             return Err(("settle.place_width".into(), format!("{} is narrower than 0.1 m", s.place_width)));
+        }
+        let spot = self.walls.spot_step;
+        if !(spot.is_finite() && (0.01..=100.0).contains(&spot)) {
+            return Err(("walls.spot_step".into(), format!("{spot} is not between 0.01 m and 100 m")));
         }
         let step = self.relocate.grid_step;
         if !(step.is_finite() && step >= 0.01 && step <= self.relocate.max_move.max(0.01)) {

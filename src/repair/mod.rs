@@ -53,7 +53,7 @@ pub use clearance::Clearance;
 pub use completion::SeatGaps;
 pub use config::{
     BedSwapConfig, LeftOutConfig, NarrowingConfig, OffBodiesConfig, RelocateConfig, RepairConfig, RepairConfigError,
-    SettleConfig, SofasToSleepersConfig, StepName, WideSeatsConfig,
+    SettleConfig, SofasToSleepersConfig, StepName, WallsConfig, WideSeatsConfig,
 };
 pub use occupancy::Occupancy;
 pub use pipeline::{Pipeline, RepairReport, RepairStep, RepairTotals, SettleReport, StepReport, Workspace};

@@ -11,7 +11,7 @@
 //! move pieces that hold people.
 
 use super::clearance::Clearance;
-use super::config::{RelocateConfig, RepairConfig, StepName};
+use super::config::{RelocateConfig, RepairConfig, StepName, WallsConfig};
 use super::helpers::{fits_inside, is_solid};
 use super::pipeline::{RepairStep, StepReport, Workspace};
 use super::walls::{stands_against_wall, wall_spots};
@@ -22,7 +22,13 @@ use std::f64::consts::FRAC_PI_2;
 
 /// Moves every standing piece that holds nobody (`holds[i]` false) and is in the bodies' way to
 /// the nearest free spot. Returns how many it moved.
-fn relocate_off_paths(scene: &mut Scene, clearance: &Clearance, holds: &[bool], cfg: &RelocateConfig) -> usize {
+fn relocate_off_paths(
+    scene: &mut Scene,
+    clearance: &Clearance,
+    holds: &[bool],
+    cfg: &RelocateConfig,
+    walls: &WallsConfig,
+) -> usize {
     let polygon = scene.floor_plan.polygon();
     let mut moved = 0;
     for (i, &held) in holds.iter().enumerate() {
@@ -46,7 +52,7 @@ fn relocate_off_paths(scene: &mut Scene, clearance: &Clearance, holds: &[bool], 
         };
         let here = b.center.truncate();
         let spots = if stands_against_wall(o.category) {
-            wall_spots(b.size.x, b.size.y, here, &polygon)
+            wall_spots(b.size.x, b.size.y, here, &polygon, walls)
         } else {
             grid_spots(&b, &polygon, cfg)
         };
@@ -89,7 +95,9 @@ impl RepairStep for Relocate {
 
     fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport {
         let (people, holds) = work.holds(scene.objects.len());
-        StepReport::Relocate { relocated: relocate_off_paths(scene, &people.clearance, holds, &config.relocate) }
+        StepReport::Relocate {
+            relocated: relocate_off_paths(scene, &people.clearance, holds, &config.relocate, &config.walls),
+        }
     }
 }
 
@@ -132,9 +140,27 @@ mod tests {
         let clearance = clearance_of(&scene);
         assert!(!clearance.blocked(&wardrobe.obox(), true).is_empty());
         // Holding someone: it stays.
-        assert_eq!(relocate_off_paths(&mut scene, &clearance, &[true, false], &RelocateConfig::default()), 0);
+        assert_eq!(
+            relocate_off_paths(
+                &mut scene,
+                &clearance,
+                &[true, false],
+                &RelocateConfig::default(),
+                &WallsConfig::default()
+            ),
+            0
+        );
         assert_eq!(scene.objects[0], wardrobe);
-        assert_eq!(relocate_off_paths(&mut scene, &clearance, &[false, false], &RelocateConfig::default()), 1);
+        assert_eq!(
+            relocate_off_paths(
+                &mut scene,
+                &clearance,
+                &[false, false],
+                &RelocateConfig::default(),
+                &WallsConfig::default()
+            ),
+            1
+        );
         let o = &scene.objects[0];
         // Out of the way, inside, clear of the cabinet, its back 5 cm from a wall, facing the room.
         assert!(clearance.blocked(&o.obox(), true).is_empty(), "{o:?}");
@@ -159,7 +185,10 @@ mod tests {
         scene.objects = vec![table.clone()];
         let clearance = clearance_of(&scene);
         let solid = is_solid(&table);
-        assert_eq!(relocate_off_paths(&mut scene, &clearance, &[false], &RelocateConfig::default()), 1);
+        assert_eq!(
+            relocate_off_paths(&mut scene, &clearance, &[false], &RelocateConfig::default(), &WallsConfig::default()),
+            1
+        );
         let o = &scene.objects[0];
         // Straight off the walkway, to the side it leant to (south), by whole 10 cm steps: the
         // first spot clear of the walker, one step less is not.
@@ -185,7 +214,10 @@ mod tests {
         scene.objects = vec![table.clone()];
         let clearance = clearance_of(&scene);
         assert!(!clearance.blocked(&table.obox(), solid).is_empty());
-        assert_eq!(relocate_off_paths(&mut scene, &clearance, &[false], &RelocateConfig::default()), 0);
+        assert_eq!(
+            relocate_off_paths(&mut scene, &clearance, &[false], &RelocateConfig::default(), &WallsConfig::default()),
+            0
+        );
         assert_eq!(scene.objects[0], table);
     }
 }

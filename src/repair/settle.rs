@@ -37,7 +37,7 @@
 
 use super::clearance::Clearance;
 use super::completion::{SeatGaps, TOP_TOUCH_HEIGHT, height_within, support_for};
-use super::config::{RepairConfig, SettleConfig, StepName};
+use super::config::{RepairConfig, SettleConfig, StepName, WallsConfig};
 use super::helpers::{
     containment_shift, footprint_separations, holding_region, inside_push, is_solid, local_extent, shift, within_slack,
 };
@@ -88,7 +88,7 @@ impl RepairStep for Settle {
                 break;
             }
             report.added += added;
-            settle_rounds(scene, people, cfg, &mut report);
+            settle_rounds(scene, people, cfg, &config.walls, &mut report);
         }
         report.max_move = scene
             .objects
@@ -102,7 +102,13 @@ impl RepairStep for Settle {
 }
 
 /// One pass: turning and fitting the holders, then up to `rounds` rounds of moves.
-fn settle_rounds(scene: &mut Scene, people: &Occupancy, cfg: &SettleConfig, report: &mut SettleReport) {
+fn settle_rounds(
+    scene: &mut Scene,
+    people: &Occupancy,
+    cfg: &SettleConfig,
+    walls: &WallsConfig,
+    report: &mut SettleReport,
+) {
     let rounds = cfg.rounds;
     let Occupancy { cond, gaps, clearance, holders } = people;
     let polygon = scene.floor_plan.polygon();
@@ -134,7 +140,7 @@ fn settle_rounds(scene: &mut Scene, people: &Occupancy, cfg: &SettleConfig, repo
         }
     }
     if cfg.walls {
-        report.walled += back_to_walls(scene, people);
+        report.walled += back_to_walls(scene, people, walls);
     }
     let mobility: Vec<f64> =
         (0..scene.objects.len()).map(|i| if people.holds(i) { cfg.anchored_mobility } else { 1.0 }).collect();
@@ -198,7 +204,7 @@ fn settle_rounds(scene: &mut Scene, people: &Occupancy, cfg: &SettleConfig, repo
 /// nobody against the first of [`wall_poses`] (behind, in front, beside) least in people's way; a
 /// holder towards the wall behind it as far as its people stay on it. Returns how many pieces moved
 /// or turned.
-fn back_to_walls(scene: &mut Scene, people: &Occupancy) -> usize {
+fn back_to_walls(scene: &mut Scene, people: &Occupancy, walls: &WallsConfig) -> usize {
     let polygon = scene.floor_plan.polygon();
     let mut walled = 0;
     for i in 0..scene.objects.len() {
@@ -213,10 +219,12 @@ fn back_to_walls(scene: &mut Scene, people: &Occupancy) -> usize {
                 people.clearance.blocked(&OBox::new(b.center + m.extend(0.0), b.size, yaw), true).len()
             };
             // `min_by_key` keeps the first of equals: the nearer wall.
-            let Some(pose) = wall_poses(&o.obox(), &polygon).into_iter().min_by_key(in_the_way) else { continue };
+            let Some(pose) = wall_poses(&o.obox(), &polygon, walls).into_iter().min_by_key(in_the_way) else {
+                continue;
+            };
             pose
         } else {
-            let Some(m) = to_wall_behind(&o.obox(), &polygon) else { continue };
+            let Some(m) = to_wall_behind(&o.obox(), &polygon, walls) else { continue };
             (o.yaw, within_slack(o, &held, m))
         };
         if m.length() > 1e-3 || wrap_angle(yaw - o.yaw).abs() > 1e-3 {

@@ -11,15 +11,13 @@
 //! for relocating a piece anywhere along it: [`wall_spots`]. This module only computes poses; it
 //! does not look at people or other pieces.
 
+use super::config::WallsConfig;
 use crate::data::layout::WALL_GAP;
 use crate::data::placed_against_wall;
 use crate::geom::{OBox, Polygon, yaw_facing};
 use crate::scene::{Category, Group};
 use glam::DVec2;
 use std::f64::consts::{FRAC_PI_2, PI};
-
-/// Share of a side's width a wall must face for the side to count as against it.
-const FACING_SHARE: f64 = 0.6;
 
 /// Whether the data stands pieces of `category` with their back against a wall (the synthetic
 /// layouts' rule, beds included; measured on the calibrated test splits: 100 % within 10 cm).
@@ -31,7 +29,7 @@ pub fn stands_against_wall(category: Category) -> bool {
 /// it and in front of it (turned half round) nearest first, then the walls beside it (turned a
 /// quarter, which swaps its footprint's axes) nearest first; empty when no wall faces any side.
 /// The caller picks among them (repair: the first of those least in people's way).
-pub fn wall_poses(b: &OBox, polygon: &Polygon) -> Vec<(f64, DVec2)> {
+pub fn wall_poses(b: &OBox, polygon: &Polygon, cfg: &WallsConfig) -> Vec<(f64, DVec2)> {
     let (ax, ay) = b.axes();
     let half = b.half().truncate();
     let centre = b.center.truncate();
@@ -40,7 +38,7 @@ pub fn wall_poses(b: &OBox, polygon: &Polygon) -> Vec<(f64, DVec2)> {
     let mut poses: Vec<(bool, f64, f64, DVec2)> = sides
         .into_iter()
         .filter_map(|(n, turn, quarter)| {
-            let gap = wall_gap(centre, n, half.y, half.x, polygon)?;
+            let gap = wall_gap(centre, n, half.y, half.x, polygon, cfg)?;
             Some((quarter, gap, b.yaw + turn, n * (gap - WALL_GAP)))
         })
         .collect();
@@ -48,14 +46,11 @@ pub fn wall_poses(b: &OBox, polygon: &Polygon) -> Vec<(f64, DVec2)> {
     poses.into_iter().map(|(_, _, yaw, m)| (yaw, m)).collect()
 }
 
-/// Spacing of the spots [`wall_spots`] tries along a wall (m).
-const SPOT_STEP: f64 = 0.1;
-
 /// The poses (yaw, centre) that stand a `width` × `depth` footprint with its back `WALL_GAP` from
 /// a wall of `polygon`, facing into the room: along every wall longer than it, every `SPOT_STEP`
 /// from one end and the spot nearest `near`. Whether a pose fits the room (corners, other walls) is
 /// left to the caller.
-pub fn wall_spots(width: f64, depth: f64, near: DVec2, polygon: &Polygon) -> Vec<(f64, DVec2)> {
+pub fn wall_spots(width: f64, depth: f64, near: DVec2, polygon: &Polygon, cfg: &WallsConfig) -> Vec<(f64, DVec2)> {
     let mut spots = Vec::new();
     for wall in polygon.walls() {
         let (lo, hi) = (width * 0.5, wall.length - width * 0.5);
@@ -63,8 +58,8 @@ pub fn wall_spots(width: f64, depth: f64, near: DVec2, polygon: &Polygon) -> Vec
             continue;
         }
         let at = |t: f64| (yaw_facing(wall.inward), wall.point(t, depth * 0.5 + WALL_GAP));
-        let steps = ((hi - lo) / SPOT_STEP).floor() as usize;
-        spots.extend((0..=steps).map(|k| at(lo + k as f64 * SPOT_STEP)));
+        let steps = ((hi - lo) / cfg.spot_step).floor() as usize;
+        spots.extend((0..=steps).map(|k| at(lo + k as f64 * cfg.spot_step)));
         spots.push(at((near - wall.start).dot(wall.along).clamp(lo, hi)));
     }
     spots
@@ -72,10 +67,10 @@ pub fn wall_spots(width: f64, depth: f64, near: DVec2, polygon: &Polygon) -> Vec
 
 /// The move (world, m) that puts `b`'s back `WALL_GAP` from the wall behind it, unturned; `None`
 /// when no wall faces its back.
-pub fn to_wall_behind(b: &OBox, polygon: &Polygon) -> Option<DVec2> {
+pub fn to_wall_behind(b: &OBox, polygon: &Polygon, cfg: &WallsConfig) -> Option<DVec2> {
     let (_, ay) = b.axes();
     let half = b.half().truncate();
-    let gap = wall_gap(b.center.truncate(), -ay, half.y, half.x, polygon)?;
+    let gap = wall_gap(b.center.truncate(), -ay, half.y, half.x, polygon, cfg)?;
     Some(-ay * (gap - WALL_GAP))
 }
 
@@ -83,7 +78,7 @@ pub fn to_wall_behind(b: &OBox, polygon: &Polygon) -> Option<DVec2> {
 /// outward normal is `n`, `reach` from the centre, `across` half wide: walls parallel to the side
 /// (within 0.06°), facing at least `FACING_SHARE` of its width, beyond the centre (a piece the model
 /// pushed through a wall goes back to that wall, not across the room to the next one).
-fn wall_gap(center: DVec2, n: DVec2, reach: f64, across: f64, polygon: &Polygon) -> Option<f64> {
+fn wall_gap(center: DVec2, n: DVec2, reach: f64, across: f64, polygon: &Polygon, cfg: &WallsConfig) -> Option<f64> {
     let along = DVec2::new(-n.y, n.x);
     let face = center + n * reach;
     let (lo, hi) = (face.dot(along) - across, face.dot(along) + across);
@@ -97,7 +92,7 @@ fn wall_gap(center: DVec2, n: DVec2, reach: f64, across: f64, polygon: &Polygon)
             let gap = (a - face).dot(n);
             let (ea, eb) = (a.dot(along).min(b.dot(along)), a.dot(along).max(b.dot(along)));
             let facing = (hi.min(eb) - lo.max(ea)).max(0.0);
-            (gap > -reach && facing >= FACING_SHARE * (hi - lo)).then_some(gap)
+            (gap > -reach && facing >= cfg.facing_share * (hi - lo)).then_some(gap)
         })
         .min_by(f64::total_cmp)
 }
@@ -117,7 +112,7 @@ mod tests {
         // south wall (y = 0), its back 1.5 m from the north one, its sides (after a quarter turn,
         // 0.3 m from the centre) 1.7 m from the west and east walls.
         let b = OBox::new(DVec3::new(2.0, 1.2, 1.0), DVec3::new(1.6, 0.6, 2.0), PI);
-        let poses = wall_poses(&b, &room());
+        let poses = wall_poses(&b, &room(), &WallsConfig::default());
         let expected = [
             (2.0 * PI, DVec2::new(0.0, -(0.9 - WALL_GAP))),
             (PI, DVec2::new(0.0, 1.5 - WALL_GAP)),
@@ -131,11 +126,11 @@ mod tests {
         }
         // Already against the south wall with its back, 5 cm off it, beside the east wall: stays.
         let b = OBox::new(DVec3::new(3.2, 0.35, 1.0), DVec3::new(1.6, 0.6, 2.0), 0.0);
-        let (yaw, m) = wall_poses(&b, &room())[0];
+        let (yaw, m) = wall_poses(&b, &room(), &WallsConfig::default())[0];
         assert!(yaw.abs() < 1e-12 && m.length() < 1e-12, "{yaw} {m}");
         // Pushed 10 cm through the south wall: back to it, not across the room.
         let b = OBox::new(DVec3::new(2.0, 0.2, 1.0), DVec3::new(1.6, 0.6, 2.0), 0.0);
-        let (yaw, m) = wall_poses(&b, &room())[0];
+        let (yaw, m) = wall_poses(&b, &room(), &WallsConfig::default())[0];
         assert!(yaw.abs() < 1e-12 && (m - DVec2::new(0.0, 0.1 + WALL_GAP)).length() < 1e-12, "{yaw} {m}");
     }
 
@@ -143,7 +138,9 @@ mod tests {
     fn a_holder_moves_only_to_the_wall_behind_it() {
         // Facing +y, back 0.9 m from the south wall: 0.85 m back.
         let b = OBox::new(DVec3::new(2.0, 1.2, 0.4), DVec3::new(1.6, 0.6, 0.8), 0.0);
-        assert!((to_wall_behind(&b, &room()).unwrap() - DVec2::new(0.0, -0.85)).length() < 1e-12);
+        assert!(
+            (to_wall_behind(&b, &room(), &WallsConfig::default()).unwrap() - DVec2::new(0.0, -0.85)).length() < 1e-12
+        );
         // In an L-shaped room, walls facing less than 60 % of the back do not count.
         let l = crate::scene::FloorPlan {
             polygon: vec![[0.0, 0.0], [0.5, 0.0], [0.5, 1.0], [4.0, 1.0], [4.0, 3.0], [0.0, 3.0]],
@@ -152,10 +149,13 @@ mod tests {
         .polygon();
         // Back at y = 1.7 over x 0.4..2.0: the inner wall y = 1 (x 0.5..4) faces 94 % of it.
         let sofa = OBox::new(DVec3::new(1.2, 2.0, 0.4), DVec3::new(1.6, 0.6, 0.8), 0.0);
-        assert!((to_wall_behind(&sofa, &l).unwrap() - DVec2::new(0.0, -(0.7 - WALL_GAP))).length() < 1e-12);
+        assert!(
+            (to_wall_behind(&sofa, &l, &WallsConfig::default()).unwrap() - DVec2::new(0.0, -(0.7 - WALL_GAP))).length()
+                < 1e-12
+        );
         // Over x 0..1: the wall y = 0 faces half of it, the wall y = 1 the other half: none.
         let corner = OBox::new(DVec3::new(0.5, 2.0, 0.4), DVec3::new(1.0, 0.6, 0.8), 0.0);
-        assert_eq!(to_wall_behind(&corner, &l), None);
+        assert_eq!(to_wall_behind(&corner, &l, &WallsConfig::default()), None);
     }
 
     #[test]
