@@ -145,6 +145,12 @@ mod tests {
     use crate::scene::{Action, Category, RoomType};
     use crate::sim::{SimPhysics, exact_contacts};
 
+    /// The pieces `push_off_bodies` moved with the default settings and `sim`'s physics.
+    fn pushed(scene: &mut Scene, clearance: &Clearance, holds: &[bool]) -> usize {
+        push_off_bodies(scene, clearance, holds, &SimPhysics, &OffBodiesConfig::default(), &NarrowingConfig::default())
+            .0
+    }
+
     /// A room from y = `south` to 3 m, 4 m wide, with a person standing at (2, 1.5) and a cabinet
     /// south of them, its north face as far into them as makes the deepest bone 5–6 cm deep.
     fn cabinet_into_a_stander(south: f64) -> (Scene, f64) {
@@ -187,31 +193,9 @@ mod tests {
         let before = scene.objects[0].clone();
         let clearance = clearance_of(&scene);
         // Holding someone: it stays.
-        assert_eq!(
-            push_off_bodies(
-                &mut scene,
-                &clearance,
-                &[true],
-                &SimPhysics,
-                &OffBodiesConfig::default(),
-                &NarrowingConfig::default()
-            )
-            .0,
-            0
-        );
+        assert_eq!(pushed(&mut scene, &clearance, &[true]), 0);
         assert_eq!(scene.objects[0], before);
-        assert_eq!(
-            push_off_bodies(
-                &mut scene,
-                &clearance,
-                &[false],
-                &SimPhysics,
-                &OffBodiesConfig::default(),
-                &NarrowingConfig::default()
-            )
-            .0,
-            1
-        );
+        assert_eq!(pushed(&mut scene, &clearance, &[false]), 1);
         let o = &scene.objects[0];
         let m = DVec2::new(o.center[0] - before.center[0], o.center[1] - before.center[1]);
         // One push, straight away from the person (south), by the depth plus 1 cm; size unchanged.
@@ -230,18 +214,7 @@ mod tests {
         assert_eq!(again, depth);
         let before = scene.objects[0].clone();
         let clearance = clearance_of(&scene);
-        assert_eq!(
-            push_off_bodies(
-                &mut scene,
-                &clearance,
-                &[false],
-                &SimPhysics,
-                &OffBodiesConfig::default(),
-                &NarrowingConfig::default()
-            )
-            .0,
-            1
-        );
+        assert_eq!(pushed(&mut scene, &clearance, &[false]), 1);
         let o = &scene.objects[0];
         // Its back stays at the wall, its front comes in by the push's southward part.
         assert!((o.center[1] - o.size[1] * 0.5 - back).abs() < 1e-9, "{o:?}");
