@@ -65,10 +65,7 @@ impl RepairFlags {
         if self.no_repair {
             return Ok(None);
         }
-        Ok(Some(match &self.repair_config {
-            Some(file) => RepairConfig::load(file)?,
-            None => RepairConfig::default(),
-        }))
+        Ok(Some(RepairConfig::load_or_default(self.repair_config.as_deref())?))
     }
 }
 

@@ -40,10 +40,7 @@ struct FileReport {
 }
 
 pub fn run(args: &RepairArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
-    let config = match &args.config {
-        Some(file) => RepairConfig::load(file)?,
-        None => RepairConfig::default(),
-    };
+    let config = RepairConfig::load_or_default(args.config.as_deref())?;
     if args.print_config {
         print_text(&format!("{}\n", serde_json::to_string_pretty(&config)?))?;
         return Ok(ExitStatus::Success);

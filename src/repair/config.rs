@@ -334,6 +334,11 @@ impl RepairConfig {
         RepairConfig::from_json(&text).map_err(|(field, message)| error(&field, message))
     }
 
+    /// The config in the JSON file `path`, or the default without one.
+    pub fn load_or_default(path: Option<&Path>) -> Result<RepairConfig, RepairConfigError> {
+        path.map_or_else(|| Ok(RepairConfig::default()), RepairConfig::load)
+    }
+
     /// The config in `text` (JSON), checked; an error is (field, what is wrong).
     pub fn from_json(text: &str) -> Result<RepairConfig, (String, String)> {
         let mut de = serde_json::Deserializer::from_str(text);

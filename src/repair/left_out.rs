@@ -99,8 +99,8 @@ impl RepairStep for LeftOut {
             None => work.physics.exact_contacts(scene, PHYS_TOLERANCE),
         };
         let (people, holds) = work.holds(scene.objects.len());
-        let contacts = people.cond.contact_boxes.clone();
-        StepReport::LeftOut { left_out: leave_out_entered(scene, &bones, &contacts, holds, &config.left_out) }
+        let contacts = &people.cond.contact_boxes;
+        StepReport::LeftOut { left_out: leave_out_entered(scene, &bones, contacts, holds, &config.left_out) }
     }
 }
 
