@@ -18,7 +18,7 @@ use crate::scene::{Category, Object, Scene};
 /// rooms and cost CKL: more single beds than the data has) after the rounds
 /// (`Clearance`) for a single bed of the median real width, cut from the side where it is in the
 /// way, where that clears part of the way (or narrows it to the narrowest real double bed, where
-/// that clears all of it), keeps what it holds as covered (a tenth off at most) and
+/// that clears all of it), keeps what it holds as covered (at least `cfg.keep_cover` of it) and
 /// it holds at most one person. Returns how many it swapped.
 fn single_beds_off_paths(scene: &mut Scene, people: &Occupancy, cfg: &BedSwapConfig) -> usize {
     let width = median_size(Category::SingleBed)[0];
@@ -48,7 +48,7 @@ fn single_beds_off_paths(scene: &mut Scene, people: &Occupancy, cfg: &BedSwapCon
             cut
         };
         let covered = |x: &Object| held.iter().map(|(c, _)| contact_iou(&c.obox, std::slice::from_ref(x))).sum::<f64>();
-        let keeps_covered = |x: &Object| covered(x) >= 0.9 * covered(o);
+        let keeps_covered = |x: &Object| covered(x) >= cfg.keep_cover * covered(o);
         // A double bed as narrow as the narrowest real one, where that clears the whole way: the
         // data's share of double beds stays.
         let narrowest = cut_to(Category::DoubleBed, size_range(Category::DoubleBed, 0).0.min(o.size[0]));
@@ -102,7 +102,7 @@ mod tests {
             yaw: 0.0,
         };
         scene.objects = vec![bed.clone()];
-        let people = Occupancy::of(&scene);
+        let people = Occupancy::of(&scene, &Default::default());
         let clearance = &people.clearance;
         let before = clearance.blocked(&bed.obox(), true).len();
         assert_eq!(single_beds_off_paths(&mut scene, &people, &BedSwapConfig::default()), 1);
@@ -119,7 +119,7 @@ mod tests {
         let h = &scene.humans[0];
         let p = h.joint_at(h.frames.len() / 2, h.skeleton.joint("pelvis").unwrap()).truncate();
         scene.objects.clear();
-        let people = Occupancy::of(&scene);
+        let people = Occupancy::of(&scene, &Default::default());
         let clearance = &people.clearance;
         // A 1.8 m wide bed west of a walker: moved west until clear of the way, then back by 0.25 m,
         // into it by less than the 0.483 m that cutting it to the narrowest real double bed

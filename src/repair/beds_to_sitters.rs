@@ -3,8 +3,8 @@
 //! narrowed on their side, keeping everyone it holds on it (a sitter's box over that edge by no
 //! more than repair allows) and no narrower than the category's narrowest real piece. Nothing moves.
 
-use super::config::{RepairConfig, StepName};
-use super::helpers::{BED_EDGE_OVERHANG, bed_edge_faced, local_extent, shift};
+use super::config::{HoldingConfig, RepairConfig, StepName};
+use super::helpers::{bed_edge_faced, local_extent, shift};
 use super::occupancy::Occupancy;
 use super::pipeline::{RepairStep, StepReport, Workspace};
 use crate::furniture::size_range;
@@ -16,7 +16,7 @@ use glam::DVec2;
 /// (a bed that could not move out from under their lower legs: its other side at a wall), on that
 /// side, as far as keeps its other people on it and no narrower than its category's narrowest
 /// real piece. Returns how many it narrowed.
-fn trim_beds_to_sitters(scene: &mut Scene, people: &Occupancy) -> usize {
+fn trim_beds_to_sitters(scene: &mut Scene, people: &Occupancy, rules: &HoldingConfig) -> usize {
     let mut trimmed = 0;
     for i in 0..scene.objects.len() {
         let o = &scene.objects[i];
@@ -36,7 +36,7 @@ fn trim_beds_to_sitters(scene: &mut Scene, people: &Occupancy) -> usize {
             let (s, sign) = if ahead { (1, 1.0) } else { (0, -1.0) };
             let sits = c.action == Action::Sit;
             for k2 in 0..2 {
-                let overhang = |s2: usize| if sits && (k2, s2) == (k, s) { BED_EDGE_OVERHANG } else { 0.0 };
+                let overhang = |s2: usize| if sits && (k2, s2) == (k, s) { rules.bed_edge_overhang } else { 0.0 };
                 keep[k2][0] = keep[k2][0].max(-lo[k2] - overhang(0));
                 keep[k2][1] = keep[k2][1].max(hi[k2] - overhang(1));
             }
@@ -78,8 +78,8 @@ impl RepairStep for BedsToSitters {
         StepName::BedsToSitters
     }
 
-    fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, _config: &RepairConfig) -> StepReport {
-        StepReport::BedsToSitters { trimmed: trim_beds_to_sitters(scene, &work.people) }
+    fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport {
+        StepReport::BedsToSitters { trimmed: trim_beds_to_sitters(scene, &work.people, &config.holding) }
     }
 }
 
@@ -105,7 +105,7 @@ mod tests {
         m.hold(sit(&body, DVec2::new(2.9 - inset, 1.5), top, -std::f64::consts::FRAC_PI_2), 3, Action::Sit);
         scene.humans = vec![m.into_human("h0")];
         scene.objects = vec![bed];
-        let mut people = Occupancy::of(&scene);
+        let mut people = Occupancy::of(&scene, &Default::default());
         people.holders = vec![(0, 0)];
         assert_eq!(people.cond.contact_boxes.len(), 1);
         (scene, people)
@@ -116,21 +116,21 @@ mod tests {
         let (mut scene, people) = bed_with_side_sitter(0.5);
         let knee = people.gaps[0].knees.iter().map(|k| k.x).fold(f64::INFINITY, f64::min);
         assert!(knee < 2.9, "the knees are over the bed: {knee}");
-        assert_eq!(trim_beds_to_sitters(&mut scene, &people), 1);
+        assert_eq!(trim_beds_to_sitters(&mut scene, &people, &HoldingConfig::default()), 1);
         let o = &scene.objects[0];
         let (west, east) = (o.center[0] - o.size[0] * 0.5, o.center[0] + o.size[0] * 0.5);
         assert!((east - (knee - KNEE_OVERHANG)).abs() < 1e-9, "east edge {east}, knees {knee}");
         assert!((west - 1.1).abs() < 1e-9 && o.size[1] == 2.1 && o.size[0] >= size_range(Category::DoubleBed, 0).0);
         // Still on the mattress: the support box overhangs the edge by no more than repair allows.
         let b = &people.cond.contact_boxes[0].obox;
-        assert!(b.center.x + b.size.x * 0.5 - east <= crate::repair::helpers::BED_EDGE_OVERHANG + 1e-9);
+        assert!(b.center.x + b.size.x * 0.5 - east <= HoldingConfig::default().bed_edge_overhang + 1e-9);
     }
 
     #[test]
     fn a_bed_whose_sitter_sits_at_its_edge_stays_as_it_is() {
         let (mut scene, people) = bed_with_side_sitter(0.15);
         let before = scene.objects.clone();
-        assert_eq!(trim_beds_to_sitters(&mut scene, &people), 0);
+        assert_eq!(trim_beds_to_sitters(&mut scene, &people, &HoldingConfig::default()), 0);
         assert_eq!(scene.objects, before);
     }
 }

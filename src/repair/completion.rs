@@ -9,8 +9,8 @@
 //!   bedrooms, or a sofa with the body along its seat in living and dining rooms, the mattress or
 //!   seat at the box's bottom.
 //! - A toucher gets a piece in front of them, drawn among those up to 1 m tall for a palm below
-//!   1 m (its top just above the pressed volume) and among the taller ones above, the pressed
-//!   volume just inside its front face.
+//!   1 m (`holding.top_touch_height`; its top just above the pressed volume) and among the taller
+//!   ones above, the pressed volume just inside its front face (`completion`'s margins).
 //!
 //! The draws follow the data's own rates, so that added pieces keep the room type's category mix
 //! (always a chair for a bedroom sitter made chairs twice as common as in the data).
@@ -19,6 +19,7 @@
 //! cover the box and stretched in height to meet it. Nothing is added beyond the room type's object
 //! limit. This module only makes the objects; repair moves them with the rest.
 
+use super::config::{CompletionConfig, HoldingConfig};
 use crate::data::{Rng, contact_probability, target_frequencies};
 use crate::furniture::{catalog_items, template_of};
 use crate::geom::{OBox, facing, wrap_angle};
@@ -27,24 +28,18 @@ use crate::scene::{Action, Category, Group, Human, Object, RoomType, Scene};
 use glam::{DVec2, DVec3};
 use std::f64::consts::{FRAC_PI_2, PI};
 
-/// The back gap of a sitter whose torso joints are unknown (m).
-const UNKNOWN_BACK_GAP: f64 = 0.03;
-
-/// Clearance kept between a sitter's back and the backrest (m).
-const BACK_MARGIN: f64 = 0.01;
-
 /// How far in front of the backrest a sitter's support volume must start (m): as far as their
 /// torso (the capsules from pelvis to neck) reaches behind the volume's back edge over the span,
-/// plus 1 cm — people lean back and their back is wider than their seat bones; 3 cm for a person
-/// without those joints.
-pub(super) fn back_gap(scene: &Scene, contact: &ContactBox) -> f64 {
+/// plus `rules.back_margin` — people lean back and their back is wider than their seat bones;
+/// `rules.unknown_back_gap` for a person without those joints.
+pub(super) fn back_gap(scene: &Scene, contact: &ContactBox, rules: &HoldingConfig) -> f64 {
     const TORSO: [&str; 4] = ["pelvis", "spine", "chest", "neck"];
-    let Some(human) = scene.humans.iter().find(|h| h.id == contact.human) else { return UNKNOWN_BACK_GAP };
+    let Some(human) = scene.humans.iter().find(|h| h.id == contact.human) else { return rules.unknown_back_gap };
     let s = &human.skeleton;
     let torso: Vec<usize> = TORSO.iter().filter_map(|n| s.joint(n)).collect();
     let bones: Vec<_> = s.bones.iter().filter(|b| torso.contains(&b.a) && torso.contains(&b.b)).collect();
     if bones.is_empty() {
-        return UNKNOWN_BACK_GAP;
+        return rules.unknown_back_gap;
     }
     let b = &contact.obox;
     let back = -facing(b.yaw);
@@ -57,7 +52,7 @@ pub(super) fn back_gap(scene: &Scene, contact: &ContactBox) -> f64 {
             }
         }
     }
-    reach + BACK_MARGIN
+    reach + rules.back_margin
 }
 
 /// Where a sitter's support box may lie on a backed seat, back to front: at least `back` (m) in
@@ -73,8 +68,8 @@ pub struct SeatGaps {
 
 impl SeatGaps {
     /// The gaps of `contact`'s person in `scene`.
-    pub fn of(scene: &Scene, contact: &ContactBox) -> SeatGaps {
-        SeatGaps { back: back_gap(scene, contact), knees: knees(scene, contact) }
+    pub fn of(scene: &Scene, contact: &ContactBox, rules: &HoldingConfig) -> SeatGaps {
+        SeatGaps { back: back_gap(scene, contact, rules), knees: knees(scene, contact) }
     }
 
     /// How far behind the front edge (local +y) of `o` the front of `contact`'s box may be (m):
@@ -107,51 +102,56 @@ fn span_frames<'a>(human: &'a Human, contact: &ContactBox) -> impl Iterator<Item
     (start..end.max(start + 1)).step_by(((end - start) / 8).max(1)).filter(|&f| f < human.frames.len())
 }
 
-/// Margin around a box in the width of a new piece (m).
-const SIDE_MARGIN: f64 = 0.04;
-/// Highest palm that touches a top rather than a front face (m).
-pub(super) const TOP_TOUCH_HEIGHT: f64 = 1.0;
-
 /// A new object that holds `contact` in `scene`, or `None` where the room type has no piece for it.
-pub fn support_for(scene: &Scene, contact: &ContactBox) -> Option<Object> {
-    let category = category_for(scene, contact)?;
+pub fn support_for(
+    scene: &Scene,
+    contact: &ContactBox,
+    rules: &HoldingConfig,
+    sizing: &CompletionConfig,
+) -> Option<Object> {
+    let category = category_for(scene, contact, rules.top_touch_height)?;
+    let margin = sizing.side_margin;
     let b = &contact.obox;
     // Sit and lie boxes are the support volume under the body: the surface goes at their top.
     let top = b.z_range().1;
     let [w, d, h] = median_size(category);
     let (size, yaw, box_at) = match (contact.action, category.group()) {
         (Action::Sit, _) => {
-            let gap = back_gap(scene, contact);
-            let mut size = [w.max(b.size.x + SIDE_MARGIN), d, h];
+            let gap = back_gap(scene, contact, rules);
+            let mut size = [w.max(b.size.x + margin), d, h];
             size[2] = height_for_surface(category, size, top);
             let surface = template_of(category, &boxed(size)).surface?;
             // Wide enough between the arms, deep enough for the box in front of the backrest.
-            size[0] += (b.size.x + SIDE_MARGIN - surface.extent().x).max(0.0);
-            size[1] += (surface.min.y + gap + b.size.y + SIDE_MARGIN - surface.max.y).max(0.0);
+            size[0] += (b.size.x + margin - surface.extent().x).max(0.0);
+            size[1] += (surface.min.y + gap + b.size.y + margin - surface.max.y).max(0.0);
             let surface = template_of(category, &boxed(size)).surface?;
             // Facing like the sitter, the box's back edge `gap` in front of the backrest.
             (size, b.yaw, DVec2::new(0.0, surface.min.y + gap + b.size.y * 0.5))
         }
         (Action::Lie, Group::Sofa) => {
             // Along the seat (the body along the sofa's local x), as the data lays people on sofas.
-            let mut size = [w.max(b.size.y + 2.0 * SIDE_MARGIN), d, h];
+            let mut size = [w.max(b.size.y + 2.0 * margin), d, h];
             size[2] = height_for_surface(category, size, top);
             let surface = template_of(category, &boxed(size)).surface?;
-            size[1] += (b.size.x + SIDE_MARGIN - surface.extent().y).max(0.0);
+            size[1] += (b.size.x + margin - surface.extent().y).max(0.0);
             let surface = template_of(category, &boxed(size)).surface?;
             (size, b.yaw + FRAC_PI_2, (surface.min + surface.max) * 0.5)
         }
         (Action::Lie, _) => {
-            let mut size = [w.max(b.size.x + 2.0 * SIDE_MARGIN), d.max(b.size.y + 2.0 * SIDE_MARGIN), h];
+            let mut size = [w.max(b.size.x + 2.0 * margin), d.max(b.size.y + 2.0 * margin), h];
             size[2] = height_for_surface(category, size, top);
             (size, b.yaw, DVec2::ZERO)
         }
         (Action::Touch, _) => {
             // The pressed volume inside, just behind the front face (local +y, towards the person),
             // under the top for a low palm.
-            let height = if b.center.z <= TOP_TOUCH_HEIGHT { top + 0.01 } else { h.max(top + 0.2) };
-            let inset = b.size.y * 0.5 + 0.02;
-            ([w.max(b.size.x + 2.0 * SIDE_MARGIN), d, height], b.yaw + PI, DVec2::new(0.0, d * 0.5 - inset))
+            let height = if b.center.z <= rules.top_touch_height {
+                top + sizing.low_touch_top
+            } else {
+                h.max(top + sizing.high_touch_top)
+            };
+            let inset = b.size.y * 0.5 + sizing.touch_inset;
+            ([w.max(b.size.x + 2.0 * margin), d, height], b.yaw + PI, DVec2::new(0.0, d * 0.5 - inset))
         }
         (Action::Walk | Action::Stand, _) => return None,
     };
@@ -166,8 +166,9 @@ pub fn support_for(scene: &Scene, contact: &ContactBox) -> Option<Object> {
     })
 }
 
-/// The category of the piece that holds `contact` in `scene`'s room type.
-fn category_for(scene: &Scene, contact: &ContactBox) -> Option<Category> {
+/// The category of the piece that holds `contact` in `scene`'s room type (a palm up to
+/// `top_touch_height` high rests on a piece no taller, a higher one on a taller piece).
+fn category_for(scene: &Scene, contact: &ContactBox, top_touch_height: f64) -> Option<Category> {
     let room = scene.room_type;
     let present = |groups: &[Group]| {
         // The most common category of those groups in the scene (first in category order on ties).
@@ -180,7 +181,7 @@ fn category_for(scene: &Scene, contact: &ContactBox) -> Option<Category> {
         }
         best.map(|(_, c)| c)
     };
-    let low_touch = contact.obox.center.z <= TOP_TOUCH_HEIGHT;
+    let low_touch = contact.obox.center.z <= top_touch_height;
     let chosen = match contact.action {
         Action::Sit => present(&[Group::Chair, Group::Stool])
             .or_else(|| drawn(room, contact, |c| matches!(c.group(), Group::Chair | Group::Stool | Group::Sofa))),
@@ -189,7 +190,7 @@ fn category_for(scene: &Scene, contact: &ContactBox) -> Option<Category> {
             RoomType::Living | RoomType::Dining => present(&[Group::Sofa]).or(Some(Category::MultiSeatSofa)),
         },
         // A low palm rests on the top of a piece up to 1 m tall, a high one on the front of a taller one.
-        Action::Touch => drawn(room, contact, |c| (median_size(c)[2] <= TOP_TOUCH_HEIGHT) == low_touch),
+        Action::Touch => drawn(room, contact, |c| (median_size(c)[2] <= top_touch_height) == low_touch),
         Action::Walk | Action::Stand => return None,
     }?;
     (room.categories().contains(&chosen) && chosen.affords(contact.action)).then_some(chosen)
@@ -331,8 +332,8 @@ mod tests {
         let mut seats = std::collections::BTreeMap::new();
         for k in 0..400 {
             let b = boxed_at(Action::Sit, 1.0 + 0.013 * k as f64, 2.0 + 0.007 * k as f64, 0.4);
-            let c = category_for(&scene, &b).unwrap();
-            assert_eq!(category_for(&scene, &b), Some(c), "the same place, the same piece");
+            let c = category_for(&scene, &b, 1.0).unwrap();
+            assert_eq!(category_for(&scene, &b, 1.0), Some(c), "the same place, the same piece");
             assert!(matches!(c.group(), Group::Chair | Group::Stool | Group::Sofa) && c.affords(Action::Sit), "{c}");
             *seats.entry(c).or_insert(0) += 1;
         }
@@ -341,8 +342,8 @@ mod tests {
         assert!(seats.values().all(|&n| n <= chairs) && chairs < 400 && seats.len() >= 3, "{seats:?}");
         for (z, tall) in [(0.8, false), (1.3, true)] {
             for k in 0..50 {
-                let c = category_for(&scene, &boxed_at(Action::Touch, 1.0 + 0.03 * k as f64, 2.0, z)).unwrap();
-                assert_eq!(median_size(c)[2] > TOP_TOUCH_HEIGHT, tall, "{c} for a palm at {z} m");
+                let c = category_for(&scene, &boxed_at(Action::Touch, 1.0 + 0.03 * k as f64, 2.0, z), 1.0).unwrap();
+                assert_eq!(median_size(c)[2] > 1.0, tall, "{c} for a palm at {z} m");
             }
         }
     }
@@ -362,7 +363,7 @@ mod tests {
         for (room, action, groups, period) in cases {
             for (mut scene, contact, i) in rooms_with(room, action, &groups) {
                 let removed = scene.objects.remove(i);
-                let new = support_for(&scene, &contact).unwrap();
+                let new = support_for(&scene, &contact, &Default::default(), &Default::default()).unwrap();
                 assert!(new.category.affords(action) && room.categories().contains(&new.category), "{new:?}");
                 let cover = contact_iou(&contact.obox, std::slice::from_ref(&new));
                 assert!(cover > 0.95, "{room} {action:?}: covers {cover}");
@@ -411,7 +412,7 @@ mod tests {
         };
         let mut scene = generate_room(RoomType::Living, 1, 0, false).scene;
         scene.objects.clear();
-        let sofa = support_for(&scene, &contact).unwrap();
+        let sofa = support_for(&scene, &contact, &Default::default(), &Default::default()).unwrap();
         assert_eq!(sofa.category, Category::MultiSeatSofa);
         // Its length (local x) runs along the body (the box's local y).
         assert!(turn_distance(sofa.yaw, 0.3 + FRAC_PI_2, 2.0 * PI) < 1e-9);

@@ -5,9 +5,8 @@
 //! It only holds settings; the steps are in their own files and the order they run in is
 //! [`StepName::ALL`] unless `steps` says otherwise.
 //!
-//! Not here yet (documented constants beside the code that uses them, to move in next): the
-//! geometric conventions read off the data — `helpers::{CLEARANCE, FRONT_TOUCH_SLACK,
-//! BED_EDGE_OVERHANG, BED_EDGE_BAND}`, `completion`'s seat margins and `TOP_TOUCH_HEIGHT`.
+//! Every number a step was tuned with is here; what is left in the step files are exact
+//! tolerances (1e-9, 1 mm "did it move") and the catalog's real furniture sizes.
 
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -95,6 +94,13 @@ impl std::fmt::Display for StepName {
 pub struct RepairConfig {
     /// The steps that run, in this order (default: [`StepName::ALL`]). A step named twice runs twice.
     pub steps: Vec<StepName>,
+    /// Gap a move leaves between a piece and the walls, and between two pieces it pushes apart
+    /// (m, default 0.005).
+    pub gap: f64,
+    /// Where on a piece its people must be (every step that keeps people on their pieces).
+    pub holding: HoldingConfig,
+    /// How a piece added for a person nothing holds is sized (`settle`'s completion).
+    pub completion: CompletionConfig,
     /// `settle`'s settings.
     pub settle: SettleConfig,
     /// How far a step may narrow a piece (`fit_into_room`, `narrow_off_paths`, `off_bodies`,
@@ -106,6 +112,8 @@ pub struct RepairConfig {
     pub relocate: RelocateConfig,
     /// `bed_swap`'s settings.
     pub bed_swap: BedSwapConfig,
+    /// `fit_into_room`'s settings.
+    pub fit_into_room: FitIntoRoomConfig,
     /// `sofas_to_sleepers`' settings.
     pub sofas_to_sleepers: SofasToSleepersConfig,
     /// `wide_seats`' settings.
@@ -120,16 +128,75 @@ impl Default for RepairConfig {
     fn default() -> RepairConfig {
         RepairConfig {
             steps: StepName::ALL.to_vec(),
+            gap: 0.005,
+            holding: HoldingConfig::default(),
+            completion: CompletionConfig::default(),
             settle: SettleConfig::default(),
             narrowing: NarrowingConfig::default(),
             walls: WallsConfig::default(),
             relocate: RelocateConfig::default(),
             bed_swap: BedSwapConfig::default(),
+            fit_into_room: FitIntoRoomConfig::default(),
             sofas_to_sleepers: SofasToSleepersConfig::default(),
             wide_seats: WideSeatsConfig::default(),
             off_bodies: OffBodiesConfig::default(),
             left_out: LeftOutConfig::default(),
         }
+    }
+}
+
+/// Where on a piece the person it holds must be, as the calibrated data puts people on pieces.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct HoldingConfig {
+    /// Clearance kept between a sitter's back (their torso's reach) and the backrest (m, default
+    /// 0.01).
+    pub back_margin: f64,
+    /// The backrest gap of a sitter whose torso joints are unknown (m, default 0.03).
+    pub unknown_back_gap: f64,
+    /// How far a bed sitter's support box may overhang the edge they sit on (m, default 0.1: the
+    /// box reaches a third down the thighs, which the data seats 20 cm from the edge).
+    pub bed_edge_overhang: f64,
+    /// How far behind the edge the front of a bed sitter's support box may be (m, default 0.05).
+    pub bed_edge_band: f64,
+    /// How much deeper than a front touch's pressed volume the band behind the front face is (m,
+    /// default 0.03).
+    pub front_touch_slack: f64,
+    /// Highest palm that rests on a piece's top; a higher one touches the front of a taller piece
+    /// (m, default 1.0).
+    pub top_touch_height: f64,
+}
+
+impl Default for HoldingConfig {
+    fn default() -> HoldingConfig {
+        HoldingConfig {
+            back_margin: 0.01,
+            unknown_back_gap: 0.03,
+            bed_edge_overhang: 0.1,
+            bed_edge_band: 0.05,
+            front_touch_slack: 0.03,
+            top_touch_height: 1.0,
+        }
+    }
+}
+
+/// How a piece added under a person is sized around their contact box.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CompletionConfig {
+    /// Margin around the box in a new piece's width and depth (m, default 0.04).
+    pub side_margin: f64,
+    /// How far inside a touched piece's front face the pressed volume's front is (m, default 0.02).
+    pub touch_inset: f64,
+    /// A low palm's piece: its top this far above the pressed volume (m, default 0.01).
+    pub low_touch_top: f64,
+    /// A high palm's piece: its top at least this far above the pressed volume (m, default 0.2).
+    pub high_touch_top: f64,
+}
+
+impl Default for CompletionConfig {
+    fn default() -> CompletionConfig {
+        CompletionConfig { side_margin: 0.04, touch_inset: 0.02, low_touch_top: 0.01, high_touch_top: 0.2 }
     }
 }
 
@@ -242,11 +309,27 @@ impl Default for RelocateConfig {
 pub struct BedSwapConfig {
     /// Area of people's clearance under the bed from which it is swapped (m², default 0.02).
     pub blocked_area: f64,
+    /// Share of its people's contact IoU the swapped bed must keep (default 0.9).
+    pub keep_cover: f64,
 }
 
 impl Default for BedSwapConfig {
     fn default() -> BedSwapConfig {
-        BedSwapConfig { blocked_area: 0.02 }
+        BedSwapConfig { blocked_area: 0.02, keep_cover: 0.9 }
+    }
+}
+
+/// `fit_into_room`: narrowing a piece that does not fit.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct FitIntoRoomConfig {
+    /// Cuts (each of the worst offence, within `narrowing`) a piece may take to fit (default 3).
+    pub cuts: usize,
+}
+
+impl Default for FitIntoRoomConfig {
+    fn default() -> FitIntoRoomConfig {
+        FitIntoRoomConfig { cuts: 3 }
     }
 }
 
@@ -355,7 +438,19 @@ impl RepairConfig {
     /// Every length and share finite and non-negative, shares at most 1, round counts at most 1,000.
     pub fn validate(&self) -> Result<(), (String, String)> {
         let s = &self.settle;
+        let (h, c) = (&self.holding, &self.completion);
         let lengths = [
+            ("gap", self.gap),
+            ("holding.back_margin", h.back_margin),
+            ("holding.unknown_back_gap", h.unknown_back_gap),
+            ("holding.bed_edge_overhang", h.bed_edge_overhang),
+            ("holding.bed_edge_band", h.bed_edge_band),
+            ("holding.front_touch_slack", h.front_touch_slack),
+            ("holding.top_touch_height", h.top_touch_height),
+            ("completion.side_margin", c.side_margin),
+            ("completion.touch_inset", c.touch_inset),
+            ("completion.low_touch_top", c.low_touch_top),
+            ("completion.high_touch_top", c.high_touch_top),
             ("settle.max_grow_height", s.max_grow_height),
             ("settle.max_grow_extent", s.max_grow_extent),
             ("settle.max_assign_distance", s.max_assign_distance),
@@ -381,6 +476,7 @@ impl RepairConfig {
             ("settle.contact_rounds", s.contact_rounds),
             ("narrowing.max_share", self.narrowing.max_share),
             ("walls.facing_share", self.walls.facing_share),
+            ("bed_swap.keep_cover", self.bed_swap.keep_cover),
         ];
         for (field, v) in shares {
             if !(v.is_finite() && (0.0..=1.0).contains(&v)) {
@@ -402,6 +498,7 @@ impl RepairConfig {
             ("settle.rounds", s.rounds),
             ("settle.pathless_rounds", s.pathless_rounds),
             ("off_bodies.rounds", self.off_bodies.rounds),
+            ("fit_into_room.cuts", self.fit_into_room.cuts),
         ];
         for (field, n) in counts {
             if n > MAX_ROUNDS {
@@ -447,6 +544,11 @@ mod tests {
         assert_eq!(field(r#"{"settle": {"covered": 1.5}}"#), "settle.covered");
         assert_eq!(field(r#"{"off_bodies": {"rounds": 100000}}"#), "off_bodies.rounds");
         assert_eq!(field(r#"{"relocate": {"grid_step": 0}}"#), "relocate.grid_step");
+        assert_eq!(field(r#"{"gap": -0.01}"#), "gap");
+        assert_eq!(field(r#"{"holding": {"top_touch_height": "high"}}"#), "holding.top_touch_height");
+        assert_eq!(field(r#"{"completion": {"side_margin": 1e9}}"#), "completion.side_margin");
+        assert_eq!(field(r#"{"bed_swap": {"keep_cover": 2}}"#), "bed_swap.keep_cover");
+        assert_eq!(field(r#"{"fit_into_room": {"cuts": 5000}}"#), "fit_into_room.cuts");
         assert_eq!(field(r#"{} x"#), ".");
         assert_eq!(field("{"), ".");
     }

@@ -85,7 +85,10 @@ mod tests {
             .contact_boxes
             .iter()
             .filter(|c| c.action == Action::Sit && b.footprint_contains(c.obox.center.truncate()));
-        on_it.flat_map(|c| SeatGaps::of(scene, c).knees).map(|k| k.dot(ay) - edge).fold(f64::INFINITY, f64::min)
+        on_it
+            .flat_map(|c| SeatGaps::of(scene, c, &Default::default()).knees)
+            .map(|k| k.dot(ay) - edge)
+            .fold(f64::INFINITY, f64::min)
     }
 
     /// The first sofa with a sitter on it in the index-th generated living room.

@@ -1,13 +1,13 @@
 //! Geometry every repair step shares (ours): moving and narrowing a piece, a contact box's extent
 //! in a piece's frame and the part of the piece it must be on, the moves that keep people on their
-//! pieces, separating two footprints, keeping a footprint inside the floor plan (5 mm from the
+//! pieces, separating two footprints, keeping a footprint inside the floor plan (a gap from the
 //! walls, off an L-shaped room's inner corner), trimming a piece's front within its category's real
 //! sizes.
 //!
 //! Steps import these; they decide nothing and read no configuration but what they are given.
 
-use super::completion::{SeatGaps, TOP_TOUCH_HEIGHT};
-use super::config::NarrowingConfig;
+use super::completion::SeatGaps;
+use super::config::{HoldingConfig, NarrowingConfig};
 use super::occupancy::Occupancy;
 use crate::furniture::{PartRole, size_range, template};
 use crate::geom::{OBox, Polygon, facing};
@@ -17,8 +17,8 @@ use glam::DVec2;
 
 /// Whether `o`, standing in for object `i`, still has every box `i` holds on the part of it the
 /// box must be on ([`holding_region`]); true for a piece that holds nobody.
-pub fn keeps_its_people(people: &Occupancy, i: usize, o: &Object) -> bool {
-    people.held_by(i).iter().all(|(c, gaps)| containment_shift(c, gaps, o).length() < 1e-3)
+pub fn keeps_its_people(people: &Occupancy, i: usize, o: &Object, rules: &HoldingConfig) -> bool {
+    people.held_by(i).iter().all(|(c, gaps)| containment_shift(c, gaps, o, rules).length() < 1e-3)
 }
 
 pub fn shift(o: &mut Object, m: DVec2) {
@@ -27,34 +27,31 @@ pub fn shift(o: &mut Object, m: DVec2) {
 }
 
 /// Whether `contact` is a palm on `o`'s front face: a touch of a cabinet, shelf or table taller
-/// than [`TOP_TOUCH_HEIGHT`] (the data touches such a piece on its front, facing it).
-pub fn touches_front(o: &Object, contact: &ContactBox) -> bool {
+/// than `rules.top_touch_height` (the data touches such a piece on its front, facing it).
+pub fn touches_front(o: &Object, contact: &ContactBox, rules: &HoldingConfig) -> bool {
     contact.action == Action::Touch
-        && o.size[2] > TOP_TOUCH_HEIGHT
+        && o.size[2] > rules.top_touch_height
         && matches!(o.category.group(), Group::Table | Group::Cabinet | Group::Shelf)
 }
-
-/// How much deeper than a front touch's pressed volume the band behind the front face is (m).
-pub const FRONT_TOUCH_SLACK: f64 = 0.03;
 
 /// The part of `o`'s footprint (local min, max corners) the person of `contact` must be on: a
 /// seat's or bed's surface for sitting and lying (on a chair or sofa, clear of the backrest and
 /// near enough the front edge for the knees to pass it, [`SeatGaps`]), the whole footprint
 /// otherwise.
-pub fn holding_region(o: &Object, contact: &ContactBox, gaps: &SeatGaps) -> (DVec2, DVec2) {
+pub fn holding_region(o: &Object, contact: &ContactBox, gaps: &SeatGaps, rules: &HoldingConfig) -> (DVec2, DVec2) {
     let half = DVec2::new(o.size[0], o.size[1]) * 0.5;
     let action = contact.action;
-    if touches_front(o, contact) {
+    if touches_front(o, contact, rules) {
         // The pressed volume just behind the front face (local +y), where the data puts the palm.
         let (lo, hi) = local_extent(&contact.obox, &o.obox());
-        let depth = hi.y - lo.y + FRONT_TOUCH_SLACK;
+        let depth = hi.y - lo.y + rules.front_touch_slack;
         return (DVec2::new(-half.x, (half.y - depth).max(-half.y)), half);
     }
     let Some(surface) = template(o).surface.filter(|_| matches!(action, Action::Sit | Action::Lie)) else {
         return (-half, half);
     };
     if action == Action::Sit && o.category.group() == Group::Bed {
-        return bed_edge_region(o, contact, (surface.min, surface.max));
+        return bed_edge_region(o, contact, (surface.min, surface.max), rules);
     }
     let backed = action == Action::Sit && matches!(o.category.group(), Group::Chair | Group::Sofa);
     if !backed {
@@ -67,24 +64,23 @@ pub fn holding_region(o: &Object, contact: &ContactBox, gaps: &SeatGaps) -> (DVe
     (DVec2::new(surface.min.x, start), surface.max)
 }
 
-/// How far a bed sitter's support box may overhang the edge they sit on (m): the box reaches a
-/// third down the thighs, which the data seats 20 cm from the edge.
-pub const BED_EDGE_OVERHANG: f64 = 0.1;
-
-/// How far behind the edge the front of a bed sitter's support box may be (m).
-pub const BED_EDGE_BAND: f64 = 0.05;
-
 /// Where a bed sitter's support box must be (local min, max corners): against the edge of the
-/// mattress they face, so that their lower legs hang outside the bed, not in it.
-pub fn bed_edge_region(o: &Object, contact: &ContactBox, (mut lo, mut hi): (DVec2, DVec2)) -> (DVec2, DVec2) {
+/// mattress they face (overhanging it by up to `rules.bed_edge_overhang`, its front at most
+/// `rules.bed_edge_band` behind it), so that their lower legs hang outside the bed, not in it.
+pub fn bed_edge_region(
+    o: &Object,
+    contact: &ContactBox,
+    (mut lo, mut hi): (DVec2, DVec2),
+    rules: &HoldingConfig,
+) -> (DVec2, DVec2) {
     let (k, ahead) = bed_edge_faced(o, contact);
     let (box_lo, box_hi) = local_extent(&contact.obox, &o.obox());
-    let reach = box_hi[k] - box_lo[k] + BED_EDGE_OVERHANG + BED_EDGE_BAND;
+    let reach = box_hi[k] - box_lo[k] + rules.bed_edge_overhang + rules.bed_edge_band;
     if ahead {
-        hi[k] += BED_EDGE_OVERHANG;
+        hi[k] += rules.bed_edge_overhang;
         lo[k] = lo[k].max(hi[k] - reach);
     } else {
-        lo[k] -= BED_EDGE_OVERHANG;
+        lo[k] -= rules.bed_edge_overhang;
         hi[k] = hi[k].min(lo[k] + reach);
     }
     (lo, hi)
@@ -113,10 +109,10 @@ pub fn local_extent(contact: &OBox, o: &OBox) -> (DVec2, DVec2) {
 
 /// The smallest move of `o` (world, m) that puts `contact`'s footprint inside the part of `o` it
 /// must be on ([`holding_region`]), or centres it there where it cannot fit.
-pub fn containment_shift(contact: &ContactBox, gaps: &SeatGaps, o: &Object) -> DVec2 {
+pub fn containment_shift(contact: &ContactBox, gaps: &SeatGaps, o: &Object, rules: &HoldingConfig) -> DVec2 {
     let b = o.obox();
     let (lo, hi) = local_extent(&contact.obox, &b);
-    let (region_lo, region_hi) = holding_region(o, contact, gaps);
+    let (region_lo, region_hi) = holding_region(o, contact, gaps, rules);
     let mut s = DVec2::ZERO;
     for k in 0..2 {
         // Any shift in [hi − region_hi, lo − region_lo] contains the box; an empty range: centre it.
@@ -129,7 +125,7 @@ pub fn containment_shift(contact: &ContactBox, gaps: &SeatGaps, o: &Object) -> D
 
 /// `m` (world) limited, along each of `o`'s axes, to the moves that keep every `held` box on the
 /// part of `o` it must be on ([`holding_region`]); `m` itself when `o` holds nothing.
-pub fn within_slack(o: &Object, held: &[(&ContactBox, &SeatGaps)], m: DVec2) -> DVec2 {
+pub fn within_slack(o: &Object, held: &[(&ContactBox, &SeatGaps)], m: DVec2, rules: &HoldingConfig) -> DVec2 {
     if held.is_empty() {
         return m;
     }
@@ -138,7 +134,7 @@ pub fn within_slack(o: &Object, held: &[(&ContactBox, &SeatGaps)], m: DVec2) -> 
     let mut local = DVec2::new(m.dot(ax), m.dot(ay));
     for (contact, gaps) in held {
         let (lo, hi) = local_extent(&contact.obox, &b);
-        let (region_lo, region_hi) = holding_region(o, contact, gaps);
+        let (region_lo, region_hi) = holding_region(o, contact, gaps, rules);
         for k in 0..2 {
             // Moving o by s moves the box by −s in o's frame: s ∈ [hi − region_hi, lo − region_lo].
             let (from, to) = ((hi[k] - region_hi[k]).min(0.0), (lo[k] - region_lo[k]).max(0.0));
@@ -149,8 +145,8 @@ pub fn within_slack(o: &Object, held: &[(&ContactBox, &SeatGaps)], m: DVec2) -> 
 }
 
 /// The moves of `a` (m) that separate its footprint from `b`'s along each separating axis (both
-/// directions), with a little clearance, shortest first; empty if the footprints do not overlap.
-pub fn footprint_separations(a: &OBox, b: &OBox) -> Vec<DVec2> {
+/// directions), `gap` (m) apart, shortest first; empty if the footprints do not overlap.
+pub fn footprint_separations(a: &OBox, b: &OBox, gap: f64) -> Vec<DVec2> {
     let (pa, pb) = (a.footprint(), b.footprint());
     let (a1, a2) = a.axes();
     let (b1, b2) = b.axes();
@@ -164,39 +160,36 @@ pub fn footprint_separations(a: &OBox, b: &OBox) -> Vec<DVec2> {
             return Vec::new();
         }
         // Moving a along +axis until its low end passes b's high end, or along −axis.
-        out.push(axis * (hb - la + CLEARANCE));
-        out.push(-axis * (ha - lb + CLEARANCE));
+        out.push(axis * (hb - la + gap));
+        out.push(-axis * (ha - lb + gap));
     }
     out.sort_by(|x, y| x.length().total_cmp(&y.length()));
     out
 }
 
-/// Clearance kept from walls and between pushed-apart objects (m).
-pub const CLEARANCE: f64 = 0.005;
-
-/// The move that brings `b`'s footprint inside `polygon` with `CLEARANCE` to spare, a few steps of
+/// The move that brings `b`'s footprint inside `polygon` with `gap` (m) to spare, a few steps of
 /// the worst offence first: a footprint corner outside (or too near the boundary), or a polygon
 /// corner inside the footprint (an L-shaped room's inner corner, which all four footprint corners
 /// can miss).
-pub fn inside_push(b: &OBox, polygon: &Polygon) -> DVec2 {
+pub fn inside_push(b: &OBox, polygon: &Polygon, gap: f64) -> DVec2 {
     let mut total = DVec2::ZERO;
     for _ in 0..12 {
         let moved = OBox::new(b.center + total.extend(0.0), b.size, b.yaw);
-        let Some((_, push)) = worst_offence(&moved, polygon) else { break };
+        let Some((_, push)) = worst_offence(&moved, polygon, gap) else { break };
         total += push;
     }
     total
 }
 
-/// Whether `b`'s footprint lies inside `polygon` with `CLEARANCE` to spare.
-pub fn fits_inside(b: &OBox, polygon: &Polygon) -> bool {
-    worst_offence(b, polygon).is_none()
+/// Whether `b`'s footprint lies inside `polygon` with `gap` (m) to spare.
+pub fn fits_inside(b: &OBox, polygon: &Polygon, gap: f64) -> bool {
+    worst_offence(b, polygon, gap).is_none()
 }
 
-/// The worst way `b`'s footprint fails to lie inside `polygon` with `CLEARANCE` to spare (a corner
+/// The worst way `b`'s footprint fails to lie inside `polygon` with `gap` (m) to spare (a corner
 /// outside or too near the boundary, a polygon corner inside the footprint): how far, and the move
 /// that mends it; `None` when it fits.
-pub fn worst_offence(b: &OBox, polygon: &Polygon) -> Option<(f64, DVec2)> {
+pub fn worst_offence(b: &OBox, polygon: &Polygon, gap: f64) -> Option<(f64, DVec2)> {
     let (ax, ay) = b.axes();
     let half = b.half().truncate();
     let centre = b.center.truncate();
@@ -210,7 +203,7 @@ pub fn worst_offence(b: &OBox, polygon: &Polygon) -> Option<(f64, DVec2)> {
         let inside = polygon.contains(p);
         let q = polygon.nearest_boundary_point(p);
         let distance = p.distance(q);
-        let excess = if inside { CLEARANCE - distance } else { distance + CLEARANCE };
+        let excess = if inside { gap - distance } else { distance + gap };
         let inward = if inside { p - q } else { q - p };
         consider(excess, inward.try_normalize().unwrap_or(DVec2::ZERO) * excess);
     }
@@ -222,11 +215,11 @@ pub fn worst_offence(b: &OBox, polygon: &Polygon) -> Option<(f64, DVec2)> {
         }
         // Move the footprint off the corner through its nearer side.
         let push = if exit.x < exit.y {
-            -ax * local.x.signum() * (exit.x + CLEARANCE)
+            -ax * local.x.signum() * (exit.x + gap)
         } else {
-            -ay * local.y.signum() * (exit.y + CLEARANCE)
+            -ay * local.y.signum() * (exit.y + gap)
         };
-        consider(exit.x.min(exit.y) + CLEARANCE, push);
+        consider(exit.x.min(exit.y) + gap, push);
     }
     worst
 }

@@ -4,23 +4,24 @@
 //! in pieces through the [`Physics`] trait.
 //!
 //! A [`Pipeline`] runs [`RepairStep`]s in order, each in its own file, with the settings of one
-//! [`RepairConfig`] (`config.rs`; `{}` in JSON is the default). The default order:
+//! [`RepairConfig`] (`config.rs`; `{}` in JSON is the default; every number the steps were tuned
+//! with is a field there, with its default). The default order:
 //!
-//! | step | does |
-//! |---|---|
-//! | `settle` | contact boxes given to pieces that afford them (a real piece added for a box none can hold), seats turned and fitted to their people, pieces squared and put back against walls, rounds of moves: under their people, off paths, apart, inside |
-//! | `relocate` | a piece holding nobody still in people's way moved to a free spot |
-//! | `bed_swap` | a double bed in people's way becomes the narrowest real double or a single bed |
-//! | `deep_seats` | a chair or sofa too deep for its sitters' knees loses depth at the front |
-//! | `beds_to_sitters` | a bed under its sitters' lower legs is narrowed on their side |
-//! | `sofas_to_sleepers` | a sofa whose sleeper lies behind the seat's middle loses depth at the front |
-//! | `touched_fronts` | a tall piece whose toucher's palm is inside it loses depth at the front |
-//! | `wide_seats` | a sofa whose people overhang its seat grows at that end |
-//! | `fit_into_room` | a piece poking out of the floor plan is moved back or narrowed |
-//! | `narrow_off_paths` | a piece a few centimetres over the walkers' feet is narrowed off them |
-//! | `off_bodies` | a piece holding nobody is pushed or narrowed out of the bones that enter it |
-//! | `left_out` | a piece holding nobody that people still pass through is left out |
-//! | `overlaps` | overlaps that survive are narrowed away, or the smaller piece goes |
+//! | step | does | reads (`RepairConfig` sections) |
+//! |---|---|---|
+//! | `settle` | contact boxes given to pieces that afford them (a real piece added for a box none can hold), seats turned and fitted to their people, pieces squared and put back against walls, rounds of moves: under their people, off paths, apart, inside | `settle`, `holding`, `completion`, `walls`, `gap` |
+//! | `relocate` | a piece holding nobody still in people's way moved to a free spot | `relocate`, `walls`, `gap` |
+//! | `bed_swap` | a double bed in people's way becomes the narrowest real double or a single bed | `bed_swap` |
+//! | `deep_seats` | a chair or sofa too deep for its sitters' knees loses depth at the front | – |
+//! | `beds_to_sitters` | a bed under its sitters' lower legs is narrowed on their side | `holding` |
+//! | `sofas_to_sleepers` | a sofa whose sleeper lies behind the seat's middle loses depth at the front | `sofas_to_sleepers` |
+//! | `touched_fronts` | a tall piece whose toucher's palm is inside it loses depth at the front | `holding` |
+//! | `wide_seats` | a sofa whose people overhang its seat grows at that end | `wide_seats`, `gap` |
+//! | `fit_into_room` | a piece poking out of the floor plan is moved back or narrowed | `fit_into_room`, `narrowing`, `holding`, `gap` |
+//! | `narrow_off_paths` | a piece a few centimetres over the walkers' feet is narrowed off them | `narrowing`, `holding` |
+//! | `off_bodies` | a piece holding nobody is pushed or narrowed out of the bones that enter it | `off_bodies`, `narrowing`, `gap` |
+//! | `left_out` | a piece holding nobody that people still pass through is left out | `left_out` |
+//! | `overlaps` | overlaps that survive are narrowed away, or the smaller piece goes | `narrowing`, `gap` |
 //!
 //! What steps share lives beside them and is not a step: the people and who holds whom
 //! (`occupancy`, `clearance`), new pieces and seat gaps (`completion`), the walls (`walls`) and the
@@ -52,8 +53,9 @@ mod wide_seats;
 pub use clearance::Clearance;
 pub use completion::SeatGaps;
 pub use config::{
-    BedSwapConfig, LeftOutConfig, NarrowingConfig, OffBodiesConfig, RelocateConfig, RepairConfig, RepairConfigError,
-    SettleConfig, SofasToSleepersConfig, StepName, WallsConfig, WideSeatsConfig,
+    BedSwapConfig, CompletionConfig, FitIntoRoomConfig, HoldingConfig, LeftOutConfig, NarrowingConfig, OffBodiesConfig,
+    RelocateConfig, RepairConfig, RepairConfigError, SettleConfig, SofasToSleepersConfig, StepName, WallsConfig,
+    WideSeatsConfig,
 };
 pub use occupancy::Occupancy;
 pub use pipeline::{Pipeline, RepairReport, RepairStep, RepairTotals, SettleReport, StepReport, Workspace};

@@ -1,6 +1,6 @@
 //! `narrow_off_paths` (ours): a standing piece a few centimetres over the walkers' feet (the
 //! free-space mask the Col_mot metric counts) is narrowed off them, where cutting one side by at
-//! most 10 cm and a quarter of the piece clears every covered pixel; a holder only as far as its
+//! most `narrowing` allows clears every covered pixel; a holder only as far as its
 //! people stay on the part they must be on (a bed's foot end off a walkway beside its sleeper).
 
 use super::config::{NarrowingConfig, RepairConfig, StepName};
@@ -21,13 +21,15 @@ impl RepairStep for NarrowOffPaths {
 
     fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport {
         let people = &work.people;
-        let narrowed = narrow_off_paths(scene, &people.cond, &config.narrowing, |i, o| keeps_its_people(people, i, o));
+        let narrowed = narrow_off_paths(scene, &people.cond, &config.narrowing, |i, o| {
+            keeps_its_people(people, i, o, &config.holding)
+        });
         StepReport::NarrowOffPaths { narrowed }
     }
 }
 
 /// Narrows every standing piece off the walkers' feet (the free-space mask the Col_mot metric
-/// counts), where cutting one side by at most 10 cm and a quarter of the piece clears every
+/// counts), where cutting one side by at most `narrowing` allows clears every
 /// covered pixel and the narrowed piece `keeps` its people (`keeps(i, narrowed)`: a holder's
 /// people still on the part they must be on). Returns how many it narrowed.
 pub(super) fn narrow_off_paths(

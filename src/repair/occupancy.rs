@@ -8,7 +8,7 @@
 
 use super::clearance::Clearance;
 use super::completion::SeatGaps;
-use super::config::SettleConfig;
+use super::config::{HoldingConfig, SettleConfig};
 use crate::geom::iou_3d;
 use crate::human::{Conditions, ContactBox};
 use crate::measure::contact_iou;
@@ -29,11 +29,11 @@ pub struct Occupancy {
 }
 
 impl Occupancy {
-    /// The people of `scene`, nobody held yet.
-    pub fn of(scene: &Scene) -> Occupancy {
+    /// The people of `scene`, nobody held yet, their seat gaps as `rules` has them.
+    pub fn of(scene: &Scene, rules: &HoldingConfig) -> Occupancy {
         let cond = Conditions::of(scene);
         let clearance = Clearance::of(scene, &cond.window);
-        let gaps = cond.contact_boxes.iter().map(|c| SeatGaps::of(scene, c)).collect();
+        let gaps = cond.contact_boxes.iter().map(|c| SeatGaps::of(scene, c, rules)).collect();
         Occupancy { cond, gaps, clearance, holders: Vec::new() }
     }
 
@@ -128,7 +128,7 @@ pub(super) fn sofa_with_sleeper(
     m.hold(lie(&body, at, seat.height, yaw_facing(glam::DVec2::X)), 3, Action::Lie);
     scene.humans = vec![m.into_human("h0")];
     scene.objects = vec![sofa];
-    let mut people = Occupancy::of(&scene);
+    let mut people = Occupancy::of(&scene, &HoldingConfig::default());
     people.holders = vec![(0, 0)];
     (scene, people)
 }
@@ -142,7 +142,7 @@ mod tests {
     #[test]
     fn an_object_holds_exactly_the_boxes_assigned_to_it() {
         let scene = generate_room(RoomType::Dining, 4, 3, false).scene;
-        let mut people = Occupancy::of(&scene);
+        let mut people = Occupancy::of(&scene, &HoldingConfig::default());
         assert!(people.cond.contact_boxes.len() >= 2 && scene.objects.len() >= 3);
         assert_eq!(people.gaps.len(), people.cond.contact_boxes.len());
         assert!(people.held_by(1).is_empty() && !people.holds(1));

@@ -14,7 +14,7 @@
 //! Pieces that hold people stay where repair put them; hanging pieces are not moved.
 
 use super::clearance::Clearance;
-use super::config::{NarrowingConfig, OffBodiesConfig, RepairConfig, StepName};
+use super::config::{RepairConfig, StepName};
 use super::helpers::{fits_inside, is_solid, narrow_by, narrowed_within, shift};
 use super::pipeline::{RepairStep, StepReport, Workspace};
 use crate::geom::intersection_volume;
@@ -31,9 +31,9 @@ fn push_off_bodies(
     clearance: &Clearance,
     holds: &[bool],
     physics: &dyn Physics,
-    cfg: &OffBodiesConfig,
-    limits: &NarrowingConfig,
+    config: &RepairConfig,
 ) -> (usize, Vec<EngineContact>) {
+    let (cfg, limits) = (&config.off_bodies, &config.narrowing);
     let before = scene.objects.clone();
     let first = physics.exact_contacts(scene, PHYS_TOLERANCE);
     let start = free_depth(holds, &first);
@@ -61,11 +61,11 @@ fn push_off_bodies(
                 .all(|(j, other)| j == i || intersection_volume(&b, &other.obox()) <= 1e-9);
             let solid = is_solid(o);
             let in_the_way = |x: &Object| clearance.blocked(&x.obox(), solid).len();
-            if fits_inside(&b, &polygon) && apart && in_the_way(&candidate) <= in_the_way(o) {
+            if fits_inside(&b, &polygon, config.gap) && apart && in_the_way(&candidate) <= in_the_way(o) {
                 scene.objects[i] = candidate;
             } else {
-                // Wedged in: the side the bones enter comes in instead (at most 10 cm and a
-                // quarter of the piece in all), which keeps it inside, apart and out of the way.
+                // Wedged in: the side the bones enter comes in instead (within `narrowing` in
+                // all), which keeps it inside, apart and out of the way.
                 let mut cut = o.clone();
                 if !narrow_by(&mut cut, push, limits) || !narrowed_within(&before[i], &cut, limits) {
                     continue;
@@ -130,8 +130,7 @@ impl RepairStep for OffBodies {
     fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport {
         let physics = work.physics;
         let (people, holds) = work.holds(scene.objects.len());
-        let (pushed, bones) =
-            push_off_bodies(scene, &people.clearance, holds, physics, &config.off_bodies, &config.narrowing);
+        let (pushed, bones) = push_off_bodies(scene, &people.clearance, holds, physics, config);
         work.bones = Some(bones);
         StepReport::OffBodies { pushed }
     }
@@ -147,8 +146,7 @@ mod tests {
 
     /// The pieces `push_off_bodies` moved with the default settings and `sim`'s physics.
     fn pushed(scene: &mut Scene, clearance: &Clearance, holds: &[bool]) -> usize {
-        push_off_bodies(scene, clearance, holds, &SimPhysics, &OffBodiesConfig::default(), &NarrowingConfig::default())
-            .0
+        push_off_bodies(scene, clearance, holds, &SimPhysics, &RepairConfig::default()).0
     }
 
     /// A room from y = `south` to 3 m, 4 m wide, with a person standing at (2, 1.5) and a cabinet
@@ -199,7 +197,7 @@ mod tests {
         let o = &scene.objects[0];
         let m = DVec2::new(o.center[0] - before.center[0], o.center[1] - before.center[1]);
         // One push, straight away from the person (south), by the depth plus 1 cm; size unchanged.
-        assert!((m.length() - (depth + OffBodiesConfig::default().margin)).abs() < 1e-9, "{m} vs {depth}");
+        assert!((m.length() - (depth + RepairConfig::default().off_bodies.margin)).abs() < 1e-9, "{m} vs {depth}");
         assert!(m.y < 0.0 && m.x.abs() < 0.2 * m.length(), "{m}");
         assert_eq!((o.size, o.yaw, o.center[2]), (before.size, before.yaw, before.center[2]));
         assert!(deepest(&scene) <= PHYS_TOLERANCE, "{}", deepest(&scene));
@@ -219,7 +217,7 @@ mod tests {
         // Its back stays at the wall, its front comes in by the push's southward part.
         assert!((o.center[1] - o.size[1] * 0.5 - back).abs() < 1e-9, "{o:?}");
         let cut = before.size[1] - o.size[1];
-        assert!(cut > depth && cut <= depth + OffBodiesConfig::default().margin + 1e-9, "{cut} vs {depth}");
+        assert!(cut > depth && cut <= depth + RepairConfig::default().off_bodies.margin + 1e-9, "{cut} vs {depth}");
         assert!(deepest(&scene) <= PHYS_TOLERANCE + 0.005, "{}", deepest(&scene));
     }
 }

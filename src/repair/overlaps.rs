@@ -11,7 +11,7 @@
 //!
 //! It does not move anything: placement is the rounds' job.
 
-use super::config::{NarrowingConfig, RepairConfig, StepName};
+use super::config::{RepairConfig, StepName};
 use super::helpers::{footprint_separations, narrow_by};
 use super::pipeline::{RepairStep, StepReport, Workspace};
 use crate::geom::intersection_volume;
@@ -28,11 +28,11 @@ pub struct OverlapReport {
 
 /// Narrows or removes pieces until no two overlap, sparing the pieces `holds[i]` marks (they
 /// hold a person's contact and may only be narrowed).
-fn resolve_overlaps(scene: &mut Scene, holds: &[bool], limits: &NarrowingConfig) -> OverlapReport {
+fn resolve_overlaps(scene: &mut Scene, holds: &[bool], config: &RepairConfig) -> OverlapReport {
     let mut report = OverlapReport::default();
     let mut holds = holds.to_vec();
     for (i, j) in overlapping_pairs(scene) {
-        if overlap(scene, i, j) && narrow_apart(scene, i, j, limits) {
+        if overlap(scene, i, j) && narrow_apart(scene, i, j, config) {
             report.narrowed += 1;
         }
     }
@@ -66,14 +66,14 @@ fn removable(scene: &Scene, holds: &[bool], i: usize, j: usize) -> Option<usize>
 
 /// Narrows the smaller piece of an overlapping pair out of the other, if a small cut along one of
 /// its own axes does it. Returns whether it did.
-fn narrow_apart(scene: &mut Scene, i: usize, j: usize, limits: &NarrowingConfig) -> bool {
+fn narrow_apart(scene: &mut Scene, i: usize, j: usize, config: &RepairConfig) -> bool {
     let (small, other) = if volume(scene, i) <= volume(scene, j) { (i, j) } else { (j, i) };
     let (a, b) = (scene.objects[small].obox(), scene.objects[other].obox());
-    let Some(&m) = footprint_separations(&a, &b).first() else { return false };
+    let Some(&m) = footprint_separations(&a, &b, config.gap).first() else { return false };
     let (ax, ay) = a.axes();
-    // Only along its own axes (the separation already keeps 5 mm between the two).
+    // Only along its own axes (the separation already keeps `gap` between the two).
     let along_own = [ax, ay].iter().any(|axis| axis.dot(m).abs() > (1.0 - 1e-9) * m.length());
-    along_own && narrow_by(&mut scene.objects[small], m, limits) && !overlap(scene, small, other)
+    along_own && narrow_by(&mut scene.objects[small], m, &config.narrowing) && !overlap(scene, small, other)
 }
 
 /// The `overlaps` step.
@@ -87,7 +87,7 @@ impl RepairStep for Overlaps {
 
     fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport {
         let (_, holds) = work.holds(scene.objects.len());
-        let r = resolve_overlaps(scene, holds, &config.narrowing);
+        let r = resolve_overlaps(scene, holds, config);
         StepReport::Overlaps { narrowed: r.narrowed, removed: r.removed }
     }
 }
@@ -110,7 +110,7 @@ mod tests {
             Object::standing("bed", Category::DoubleBed, [0.0, 0.0], [1.6, 2.0, 0.5]),
             Object::standing("n", Category::Nightstand, [1.01, 0.8], [0.5, 0.4, 0.5]),
         ]);
-        let r = resolve_overlaps(&mut s, &[false, false], &NarrowingConfig::default());
+        let r = resolve_overlaps(&mut s, &[false, false], &RepairConfig::default());
         assert_eq!(r, OverlapReport { narrowed: 1, removed: 0 });
         let n = &s.objects[1];
         // Its far side stays at x = 1.26; its near side moves to 0.805 (4.5 cm cut).
@@ -130,20 +130,17 @@ mod tests {
         };
         let mut s = twins();
         assert_eq!(
-            resolve_overlaps(&mut s, &[false, false, false], &NarrowingConfig::default()),
+            resolve_overlaps(&mut s, &[false, false, false], &RepairConfig::default()),
             OverlapReport { narrowed: 0, removed: 1 }
         );
         assert_eq!(s.objects.iter().map(|o| o.id.as_str()).collect::<Vec<_>>(), ["a", "far"]);
         // The smaller one holds a contact: the larger goes.
         let mut s = twins();
-        resolve_overlaps(&mut s, &[false, true, false], &NarrowingConfig::default());
+        resolve_overlaps(&mut s, &[false, true, false], &RepairConfig::default());
         assert_eq!(s.objects.iter().map(|o| o.id.as_str()).collect::<Vec<_>>(), ["b", "far"]);
         // Both hold contacts: both stay.
         let mut s = twins();
-        assert_eq!(
-            resolve_overlaps(&mut s, &[true, true, false], &NarrowingConfig::default()),
-            OverlapReport::default()
-        );
+        assert_eq!(resolve_overlaps(&mut s, &[true, true, false], &RepairConfig::default()), OverlapReport::default());
         assert_eq!(s.objects.len(), 3);
     }
 }

@@ -34,7 +34,7 @@ pub struct Workspace<'a> {
 impl<'a> Workspace<'a> {
     /// The people of `scene`, each contact box given to an object that can hold it.
     pub fn new(scene: &Scene, config: &RepairConfig, physics: &'a dyn Physics) -> Workspace<'a> {
-        let mut people = Occupancy::of(scene);
+        let mut people = Occupancy::of(scene, &config.holding);
         people.assign(scene, &config.settle);
         Workspace { people, holds: None, bones: None, physics }
     }

@@ -11,7 +11,7 @@
 //! move pieces that hold people.
 
 use super::clearance::Clearance;
-use super::config::{RelocateConfig, RepairConfig, StepName, WallsConfig};
+use super::config::{RelocateConfig, RepairConfig, StepName};
 use super::helpers::{fits_inside, is_solid};
 use super::pipeline::{RepairStep, StepReport, Workspace};
 use super::walls::{stands_against_wall, wall_spots};
@@ -22,13 +22,7 @@ use std::f64::consts::FRAC_PI_2;
 
 /// Moves every standing piece that holds nobody (`holds[i]` false) and is in the bodies' way to
 /// the nearest free spot. Returns how many it moved.
-fn relocate_off_paths(
-    scene: &mut Scene,
-    clearance: &Clearance,
-    holds: &[bool],
-    cfg: &RelocateConfig,
-    walls: &WallsConfig,
-) -> usize {
+fn relocate_off_paths(scene: &mut Scene, clearance: &Clearance, holds: &[bool], config: &RepairConfig) -> usize {
     let polygon = scene.floor_plan.polygon();
     let mut moved = 0;
     for (i, &held) in holds.iter().enumerate() {
@@ -46,15 +40,15 @@ fn relocate_off_paths(
             .map(|(_, x)| x.obox())
             .collect();
         let free = |c: &OBox| {
-            fits_inside(c, &polygon)
+            fits_inside(c, &polygon, config.gap)
                 && clearance.blocked(c, solid).is_empty()
                 && others.iter().all(|x| intersection_volume(c, x) <= 1e-9)
         };
         let here = b.center.truncate();
         let spots = if stands_against_wall(o.category) {
-            wall_spots(b.size.x, b.size.y, here, &polygon, walls)
+            wall_spots(b.size.x, b.size.y, here, &polygon, &config.walls)
         } else {
-            grid_spots(&b, &polygon, cfg)
+            grid_spots(&b, &polygon, &config.relocate)
         };
         let best = spots
             .into_iter()
@@ -95,9 +89,7 @@ impl RepairStep for Relocate {
 
     fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport {
         let (people, holds) = work.holds(scene.objects.len());
-        StepReport::Relocate {
-            relocated: relocate_off_paths(scene, &people.clearance, holds, &config.relocate, &config.walls),
-        }
+        StepReport::Relocate { relocated: relocate_off_paths(scene, &people.clearance, holds, config) }
     }
 }
 
@@ -140,31 +132,13 @@ mod tests {
         let clearance = clearance_of(&scene);
         assert!(!clearance.blocked(&wardrobe.obox(), true).is_empty());
         // Holding someone: it stays.
-        assert_eq!(
-            relocate_off_paths(
-                &mut scene,
-                &clearance,
-                &[true, false],
-                &RelocateConfig::default(),
-                &WallsConfig::default()
-            ),
-            0
-        );
+        assert_eq!(relocate_off_paths(&mut scene, &clearance, &[true, false], &RepairConfig::default()), 0);
         assert_eq!(scene.objects[0], wardrobe);
-        assert_eq!(
-            relocate_off_paths(
-                &mut scene,
-                &clearance,
-                &[false, false],
-                &RelocateConfig::default(),
-                &WallsConfig::default()
-            ),
-            1
-        );
+        assert_eq!(relocate_off_paths(&mut scene, &clearance, &[false, false], &RepairConfig::default()), 1);
         let o = &scene.objects[0];
         // Out of the way, inside, clear of the cabinet, its back 5 cm from a wall, facing the room.
         assert!(clearance.blocked(&o.obox(), true).is_empty(), "{o:?}");
-        assert!(fits_inside(&o.obox(), &polygon), "{o:?}");
+        assert!(fits_inside(&o.obox(), &polygon, RepairConfig::default().gap), "{o:?}");
         assert!(intersection_volume(&o.obox(), &cabinet.obox()) <= 1e-9, "{o:?}");
         let back = o.obox().center.truncate() - facing(o.yaw) * (o.size[1] * 0.5 + 0.05);
         assert!(polygon.distance_to_boundary(back) < 1e-9, "{o:?}");
@@ -185,10 +159,7 @@ mod tests {
         scene.objects = vec![table.clone()];
         let clearance = clearance_of(&scene);
         let solid = is_solid(&table);
-        assert_eq!(
-            relocate_off_paths(&mut scene, &clearance, &[false], &RelocateConfig::default(), &WallsConfig::default()),
-            1
-        );
+        assert_eq!(relocate_off_paths(&mut scene, &clearance, &[false], &RepairConfig::default()), 1);
         let o = &scene.objects[0];
         // Straight off the walkway, to the side it leant to (south), by whole 10 cm steps: the
         // first spot clear of the walker, one step less is not.
@@ -214,10 +185,7 @@ mod tests {
         scene.objects = vec![table.clone()];
         let clearance = clearance_of(&scene);
         assert!(!clearance.blocked(&table.obox(), solid).is_empty());
-        assert_eq!(
-            relocate_off_paths(&mut scene, &clearance, &[false], &RelocateConfig::default(), &WallsConfig::default()),
-            0
-        );
+        assert_eq!(relocate_off_paths(&mut scene, &clearance, &[false], &RepairConfig::default()), 0);
         assert_eq!(scene.objects[0], table);
     }
 }

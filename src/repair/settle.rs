@@ -36,8 +36,8 @@
 //! finish what the rounds leave.
 
 use super::clearance::Clearance;
-use super::completion::{SeatGaps, TOP_TOUCH_HEIGHT, height_within, support_for};
-use super::config::{RepairConfig, SettleConfig, StepName, WallsConfig};
+use super::completion::{SeatGaps, height_within, support_for};
+use super::config::{HoldingConfig, RepairConfig, StepName};
 use super::helpers::{
     containment_shift, footprint_separations, holding_region, inside_push, is_solid, local_extent, shift, within_slack,
 };
@@ -82,13 +82,16 @@ impl RepairStep for Settle {
                     }
                 })
                 .collect();
-            let added =
-                if cfg.complete { complete_supports(scene, &people.cond, &missing, &mut people.holders) } else { 0 };
+            let added = if cfg.complete {
+                complete_supports(scene, &people.cond, &missing, &mut people.holders, config)
+            } else {
+                0
+            };
             if pass > 0 && added == 0 {
                 break;
             }
             report.added += added;
-            settle_rounds(scene, people, cfg, &config.walls, &mut report);
+            settle_rounds(scene, people, config, &mut report);
         }
         report.max_move = scene
             .objects
@@ -102,13 +105,8 @@ impl RepairStep for Settle {
 }
 
 /// One pass: turning and fitting the holders, then up to `rounds` rounds of moves.
-fn settle_rounds(
-    scene: &mut Scene,
-    people: &Occupancy,
-    cfg: &SettleConfig,
-    walls: &WallsConfig,
-    report: &mut SettleReport,
-) {
+fn settle_rounds(scene: &mut Scene, people: &Occupancy, config: &RepairConfig, report: &mut SettleReport) {
+    let (cfg, rules, gap) = (&config.settle, &config.holding, config.gap);
     let rounds = cfg.rounds;
     let Occupancy { cond, gaps, clearance, holders } = people;
     let polygon = scene.floor_plan.polygon();
@@ -128,7 +126,7 @@ fn settle_rounds(
             scene.objects[*i].yaw = yaw;
             turned[*i] = true;
         }
-        report.resized += fit_size(&mut scene.objects[*i], contact, &gaps[*b], cfg) as usize;
+        report.resized += fit_size(&mut scene.objects[*i], contact, &gaps[*b], config) as usize;
     }
     report.turned += turned.iter().zip(&kept).filter(|(t, k)| **t && !**k).count();
     // The data's pieces all stand square to the walls; so do ours (seats the quarter turn nearest
@@ -140,7 +138,7 @@ fn settle_rounds(
         }
     }
     if cfg.walls {
-        report.walled += back_to_walls(scene, people, walls);
+        report.walled += back_to_walls(scene, people, config);
     }
     let mobility: Vec<f64> =
         (0..scene.objects.len()).map(|i| if people.holds(i) { cfg.anchored_mobility } else { 1.0 }).collect();
@@ -151,7 +149,7 @@ fn settle_rounds(
         let mut counts = vec![0usize; scene.objects.len()];
         if (round as f64) < rounds as f64 * cfg.contact_rounds {
             for (b, i) in holders {
-                moves[*i] += containment_shift(&cond.contact_boxes[*b], &gaps[*b], &scene.objects[*i]);
+                moves[*i] += containment_shift(&cond.contact_boxes[*b], &gaps[*b], &scene.objects[*i], rules);
                 counts[*i] += 1;
             }
         }
@@ -159,7 +157,7 @@ fn settle_rounds(
             shift(o, (moves[i] / counts[i].max(1) as f64).clamp_length_max(cfg.max_step));
             if round + cfg.pathless_rounds < rounds {
                 // A holder gives way to walkers only as far as its people stay on it.
-                let push = within_slack(o, &people.held_by(i), path_push(o, clearance, cfg.max_step));
+                let push = within_slack(o, &people.held_by(i), path_push(o, clearance, cfg.max_step), rules);
                 shift(o, push.clamp_length_max(cfg.max_step));
             }
         }
@@ -174,17 +172,17 @@ fn settle_rounds(
                 // The shortest separation that keeps both inside the walls, else the shortest.
                 let fits = |m: DVec2| {
                     let moved = |o: &OBox, d: DVec2| OBox::new(o.center + d.extend(0.0), o.size, o.yaw);
-                    inside_push(&moved(&a, m * si), &polygon).length() < 1e-6
-                        && inside_push(&moved(&b, -m * sj), &polygon).length() < 1e-6
+                    inside_push(&moved(&a, m * si), &polygon, gap).length() < 1e-6
+                        && inside_push(&moved(&b, -m * sj), &polygon, gap).length() < 1e-6
                 };
-                let separations = footprint_separations(&a, &b);
+                let separations = footprint_separations(&a, &b, gap);
                 let Some(&mtv) = separations.iter().find(|m| fits(**m)).or(separations.first()) else { continue };
                 shift(&mut scene.objects[i], mtv * si);
                 shift(&mut scene.objects[j], -mtv * sj);
             }
         }
         for o in &mut scene.objects {
-            let w = inside_push(&o.obox(), &polygon);
+            let w = inside_push(&o.obox(), &polygon, gap);
             shift(o, w);
         }
         report.rounds += 1;
@@ -204,7 +202,8 @@ fn settle_rounds(
 /// nobody against the first of [`wall_poses`] (behind, in front, beside) least in people's way; a
 /// holder towards the wall behind it as far as its people stay on it. Returns how many pieces moved
 /// or turned.
-fn back_to_walls(scene: &mut Scene, people: &Occupancy, walls: &WallsConfig) -> usize {
+fn back_to_walls(scene: &mut Scene, people: &Occupancy, config: &RepairConfig) -> usize {
+    let walls = &config.walls;
     let polygon = scene.floor_plan.polygon();
     let mut walled = 0;
     for i in 0..scene.objects.len() {
@@ -225,7 +224,7 @@ fn back_to_walls(scene: &mut Scene, people: &Occupancy, walls: &WallsConfig) -> 
             pose
         } else {
             let Some(m) = to_wall_behind(&o.obox(), &polygon, walls) else { continue };
-            (o.yaw, within_slack(o, &held, m))
+            (o.yaw, within_slack(o, &held, m, &config.holding))
         };
         if m.length() > 1e-3 || wrap_angle(yaw - o.yaw).abs() > 1e-3 {
             walled += 1;
@@ -255,6 +254,7 @@ fn complete_supports(
     cond: &Conditions,
     missing: &[usize],
     holders: &mut Vec<(usize, usize)>,
+    config: &RepairConfig,
 ) -> usize {
     let mut added: Vec<(usize, usize)> = Vec::new();
     for &k in missing {
@@ -263,7 +263,7 @@ fn complete_supports(
         let holder = match shared {
             Some(&(_, i)) => i,
             None if scene.objects.len() < scene.room_type.max_objects() => {
-                let Some(o) = support_for(scene, contact) else { continue };
+                let Some(o) = support_for(scene, contact, &config.holding, &config.completion) else { continue };
                 scene.objects.push(o);
                 scene.objects.len() - 1
             }
@@ -305,7 +305,8 @@ fn facing_yaw(o: &Object, contact: &ContactBox) -> Option<f64> {
 /// depth grow until the box fits the part it must be on ([`holding_region`]). A surface's height
 /// stays within the category's real pieces' (± 15 cm), any other height changes by at most 15 cm,
 /// width and depth by at most 20 cm. Returns whether it changed.
-fn fit_size(o: &mut Object, contact: &ContactBox, gaps: &SeatGaps, cfg: &SettleConfig) -> bool {
+fn fit_size(o: &mut Object, contact: &ContactBox, gaps: &SeatGaps, config: &RepairConfig) -> bool {
+    let (cfg, rules) = (&config.settle, &config.holding);
     if o.category.is_hanging() {
         return false;
     }
@@ -316,7 +317,7 @@ fn fit_size(o: &mut Object, contact: &ContactBox, gaps: &SeatGaps, cfg: &SettleC
         // Any height real pieces of the category have, give or take cfg.max_grow_height.
         // A top above a resting palm comes down to it where the category's real pieces (give or
         // take cfg.max_grow_height) are that low; part of the way would only put it in the forearm.
-        _ if rests_palm_on_top(o, contact) && o.size[2] > top => {
+        _ if rests_palm_on_top(o, contact, rules) && o.size[2] > top => {
             Some(top).filter(|&h| h >= height_range(o.category).0 - cfg.max_grow_height)
         }
         Some(_) => {
@@ -330,7 +331,7 @@ fn fit_size(o: &mut Object, contact: &ContactBox, gaps: &SeatGaps, cfg: &SettleC
         o.center[2] = height * 0.5;
     }
     let (lo, hi) = local_extent(&contact.obox, &o.obox());
-    let (region_lo, region_hi) = holding_region(o, contact, gaps);
+    let (region_lo, region_hi) = holding_region(o, contact, gaps, rules);
     for k in 0..2 {
         let need = (hi[k] - lo[k]) + (o.size[k] - (region_hi[k] - region_lo[k]));
         if need > o.size[k] && need - o.size[k] <= cfg.max_grow_extent {
@@ -340,13 +341,13 @@ fn fit_size(o: &mut Object, contact: &ContactBox, gaps: &SeatGaps, cfg: &SettleC
     o.size != before
 }
 
-/// Whether `contact` is a palm resting on `o`'s top: a touch at most [`TOP_TOUCH_HEIGHT`] high on
-/// a table, cabinet or shelf no taller than that (the data rests the palm on the top of such a
-/// piece, the top at the touch box's top, and touches a taller one's front).
-pub(super) fn rests_palm_on_top(o: &Object, contact: &ContactBox) -> bool {
+/// Whether `contact` is a palm resting on `o`'s top: a touch at most `rules.top_touch_height`
+/// high on a table, cabinet or shelf no taller than that (the data rests the palm on the top of
+/// such a piece, the top at the touch box's top, and touches a taller one's front).
+pub(super) fn rests_palm_on_top(o: &Object, contact: &ContactBox, rules: &HoldingConfig) -> bool {
     contact.action == Action::Touch
-        && contact.obox.center.z <= TOP_TOUCH_HEIGHT
-        && o.size[2] <= TOP_TOUCH_HEIGHT
+        && contact.obox.center.z <= rules.top_touch_height
+        && o.size[2] <= rules.top_touch_height
         && matches!(o.category.group(), Group::Table | Group::Cabinet | Group::Shelf)
 }
 

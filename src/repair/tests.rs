@@ -1,10 +1,8 @@
 //! End-to-end tests of the default repair pipeline on generated rooms.
 
 use super::completion::SeatGaps;
-use super::config::{NarrowingConfig, SettleConfig};
-use super::helpers::{
-    CLEARANCE, containment_shift, fits_inside, footprint_separations, keeps_its_people, narrow_by, shift,
-};
+use super::config::{HoldingConfig, NarrowingConfig, SettleConfig};
+use super::helpers::{containment_shift, fits_inside, footprint_separations, keeps_its_people, narrow_by, shift};
 use super::narrow_off_paths::narrow_off_paths;
 use super::occupancy::Occupancy;
 use super::settle::rests_palm_on_top;
@@ -17,6 +15,9 @@ use crate::human::{Conditions, ContactBox};
 use crate::measure::contact_iou;
 use crate::scene::{Action, Group, Object, RoomType, Scene};
 use glam::{DVec2, DVec3};
+
+/// The gap the helpers are tested with (m; the default `RepairConfig::gap`).
+const GAP: f64 = 0.005;
 
 /// The default pipeline with `rounds` rounds per settling pass and `sim`'s physics.
 pub(crate) fn repair_with_rounds(scene: &mut Scene, rounds: usize) -> RepairTotals {
@@ -106,16 +107,16 @@ fn a_wardrobe_left_in_the_middle_of_the_room_goes_back_to_a_wall() {
 fn separations_part_two_overlapping_boxes_shortest_first() {
     let a = OBox::new(DVec3::new(0.0, 0.0, 0.5), DVec3::new(1.0, 1.0, 1.0), 0.0);
     let b = OBox::new(DVec3::new(0.8, 0.1, 0.5), DVec3::new(1.0, 1.0, 1.0), 0.0);
-    let all = footprint_separations(&a, &b);
+    let all = footprint_separations(&a, &b, GAP);
     assert_eq!(all.len(), 8);
     // a spans [−0.5, 0.5]², b [0.3, 1.3] × [−0.4, 0.6] (both axes twice): 0.2 left, 0.9 down,
     // 1.1 up, 1.8 right.
-    assert!((all[0] - DVec2::new(-(0.2 + CLEARANCE), 0.0)).length() < 1e-12, "{all:?}");
-    assert!((all[2] - DVec2::new(0.0, -(0.9 + CLEARANCE))).length() < 1e-12, "{all:?}");
+    assert!((all[0] - DVec2::new(-(0.2 + GAP), 0.0)).length() < 1e-12, "{all:?}");
+    assert!((all[2] - DVec2::new(0.0, -(0.9 + GAP))).length() < 1e-12, "{all:?}");
     for m in &all {
         let moved = OBox::new(a.center + m.extend(0.0), a.size, 0.0);
         assert!(intersection_volume(&moved, &b) <= 1e-12, "{m}");
-        assert!(footprint_separations(&moved, &b).is_empty());
+        assert!(footprint_separations(&moved, &b, GAP).is_empty());
     }
 }
 
@@ -137,14 +138,14 @@ fn a_diagonal_bed_too_wide_for_its_room_is_squared_and_a_slightly_long_one_narro
     assert_eq!(r.settle.squared, 1, "{r:?}");
     assert_eq!(scene.objects[0].yaw, 0.0);
     assert_eq!(scene.objects[0].size, [1.4, 2.0, 0.5]);
-    assert!(fits_inside(&scene.objects[0].obox(), &scene.floor_plan.polygon()));
+    assert!(fits_inside(&scene.objects[0].obox(), &scene.floor_plan.polygon(), GAP));
     // Square already but 2.25 m wide in 2.2 m: narrowed by the 5 cm and twice the clearance.
     scene.objects = vec![bed(0.0, [2.25, 1.8, 0.5])];
     let r = repair_with_rounds(&mut scene, 30);
     assert_eq!((r.settle.squared, r.narrowed), (0, 1), "{r:?}");
     let w = scene.objects[0].size[0];
-    assert!(w < 2.2 - 2.0 * CLEARANCE + 1e-9 && w > 2.15, "{w}");
-    assert!(fits_inside(&scene.objects[0].obox(), &scene.floor_plan.polygon()));
+    assert!(w < 2.2 - 2.0 * GAP + 1e-9 && w > 2.15, "{w}");
+    assert!(fits_inside(&scene.objects[0].obox(), &scene.floor_plan.polygon(), GAP));
 }
 
 #[test]
@@ -212,14 +213,17 @@ fn a_piece_a_few_centimetres_over_the_walkers_feet_is_narrowed_off_them() {
     let palm = glam::DVec3::new(x + 0.04 - 0.2, w.center.y + 0.08, 0.8);
     m.hold(crate::human::touch(&body, palm, std::f64::consts::PI, crate::human::Side::Right), 3, Action::Touch);
     held.humans = vec![m.into_human("h0")];
-    let mut people = Occupancy::of(&held);
+    let mut people = Occupancy::of(&held, &Default::default());
     people.holders = vec![(0, 0)];
     let (mut cut, mut cut_more) = (held.objects[0].clone(), held.objects[0].clone());
     assert!(narrow_by(&mut cut, DVec2::new(-0.04, 0.0), &NarrowingConfig::default()));
     cut_more.size[0] -= 0.19;
     cut_more.center[0] -= 0.095;
-    assert!(keeps_its_people(&people, 0, &held.objects[0]), "held at first");
-    assert!(keeps_its_people(&people, 0, &cut) && !keeps_its_people(&people, 0, &cut_more));
+    assert!(keeps_its_people(&people, 0, &held.objects[0], &HoldingConfig::default()), "held at first");
+    assert!(
+        keeps_its_people(&people, 0, &cut, &HoldingConfig::default())
+            && !keeps_its_people(&people, 0, &cut_more, &HoldingConfig::default())
+    );
     // 20 cm over: left alone; a piece whose people the cut would leave: left alone.
     for (center, keeps) in [(x + 0.2 - 0.4, true), (x + 0.04 - 0.4, false)] {
         scene.objects = vec![cabinet(center)];
@@ -247,7 +251,7 @@ fn a_bed_on_the_wrong_side_of_its_sitter_goes_behind_them() {
         // their lower legs in the mattress.
         let mut moved = bed.clone();
         shift(&mut moved, facing(sit.obox.yaw) * (bed.size[0] - 0.4));
-        if !fits_inside(&moved.obox(), &scene.floor_plan.polygon()) {
+        if !fits_inside(&moved.obox(), &scene.floor_plan.polygon(), GAP) {
             continue;
         }
         let human = scene.humans.iter().find(|h| h.id == sit.human).unwrap().clone();
@@ -344,7 +348,10 @@ fn a_sitter_under_a_table_top_gets_a_seat_though_the_table_covers_their_box() {
 #[test]
 fn a_low_piece_touched_on_its_top_comes_down_to_the_palm_within_real_heights() {
     let mut checked = 0;
-    for (index, mut scene, touch, i) in rooms_with_held(RoomType::Living, Action::Touch, rests_palm_on_top).take(3) {
+    for (index, mut scene, touch, i) in
+        rooms_with_held(RoomType::Living, Action::Touch, |o, c| rests_palm_on_top(o, c, &HoldingConfig::default()))
+            .take(3)
+    {
         // The data rests the palm on the top: the top at the touch box's top.
         let right = scene.objects[i].size[2];
         assert!((right - touch.obox.z_range().1).abs() < 0.015, "{index} {:?} {touch:?}", scene.objects[i]);
@@ -420,11 +427,11 @@ fn a_sitter_on_a_deep_sofa_ends_with_the_knees_past_its_front_edge() {
     let gaps = SeatGaps { back: 0.05, knees: vec![DVec2::new(-0.1, 0.35), DVec2::new(0.1, 0.36)] };
     assert!((gaps.front(&contact, &sofa) - (0.25 - crate::human::KNEE_OVERHANG)).abs() < 1e-12);
     let mut moved = sofa.clone();
-    shift(&mut moved, containment_shift(&contact, &gaps, &sofa));
+    shift(&mut moved, containment_shift(&contact, &gaps, &sofa, &HoldingConfig::default()));
     let front = template(&moved).surface.unwrap().max.y + moved.center[1];
     assert!((front - (0.35 - crate::human::KNEE_OVERHANG)).abs() < 1e-9, "{front}");
     // Without knees (or with a shallow seat's) the box may sit anywhere clear of the backrest.
-    assert_eq!(containment_shift(&contact, &back_only(0.05), &sofa), DVec2::ZERO);
+    assert_eq!(containment_shift(&contact, &back_only(0.05), &sofa, &HoldingConfig::default()), DVec2::ZERO);
 }
 
 #[test]
@@ -444,12 +451,31 @@ fn containment_moves_a_seat_under_its_sitter_by_the_smallest_shift() {
     };
     // A stool's seat is its whole top: the box reaches x = 0.4, the stool 0.25, so it must move
     // 0.15 along world x.
-    let s = containment_shift(&sit(DVec3::new(0.3, 0.0, 0.45), 0.0), &back_only(0.08), &chair);
+    let s =
+        containment_shift(&sit(DVec3::new(0.3, 0.0, 0.45), 0.0), &back_only(0.08), &chair, &HoldingConfig::default());
     assert!((s - DVec2::new(0.15, 0.0)).length() < 1e-12, "{s}");
     // A dining chair facing +y (yaw 0) 0.5 deep has a 6 cm back at −y; its seat starts at
     // y = −0.19, and the box must start a back gap of 8 cm further, at −0.11: a box from y = −0.2
     // moves the chair by −0.09 in y.
     let chair = Object { category: crate::scene::Category::DiningChair, yaw: 0.0, ..chair };
-    let s = containment_shift(&sit(DVec3::new(0.0, -0.1, 0.45), 0.0), &back_only(0.08), &chair);
+    let s =
+        containment_shift(&sit(DVec3::new(0.0, -0.1, 0.45), 0.0), &back_only(0.08), &chair, &HoldingConfig::default());
     assert!((s - DVec2::new(0.0, -0.09)).length() < 1e-12, "{s}");
+}
+
+#[test]
+fn a_piece_through_a_wall_ends_the_configs_gap_inside() {
+    let mut scene = generate_room(RoomType::Bedroom, 3, 0, false).scene;
+    scene.humans.clear();
+    scene.floor_plan.polygon = vec![[0.0, 0.0], [4.0, 0.0], [4.0, 4.0], [0.0, 4.0]];
+    // A nightstand 15 cm through the west wall.
+    scene.objects = vec![Object::standing("o0", crate::scene::Category::Nightstand, [0.1, 2.0], [0.5, 0.4, 0.5])];
+    for gap in [0.005, 0.05] {
+        let mut moved = scene.clone();
+        let config = RepairConfig { gap, ..RepairConfig::default() };
+        repair_scene(&mut moved, &config, &crate::sim::SimPhysics);
+        let o = &moved.objects[0];
+        let west = (0..4).map(|k| o.obox().footprint()[k].x).fold(f64::INFINITY, f64::min);
+        assert!(west >= gap - 1e-9 && west < gap + 0.01, "gap {gap}: the piece's west side at {west}");
+    }
 }

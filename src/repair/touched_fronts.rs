@@ -6,7 +6,7 @@
 //! category's shallowest real piece. Nothing moves; low pieces (the palm rests on their top) are
 //! left alone.
 
-use super::config::{RepairConfig, StepName};
+use super::config::{HoldingConfig, RepairConfig, StepName};
 use super::helpers::{local_extent, touches_front, trim_front_within_real};
 use super::occupancy::Occupancy;
 use super::pipeline::{RepairStep, StepReport, Workspace};
@@ -14,7 +14,7 @@ use crate::scene::{Action, Scene};
 
 /// Trims every piece touched on its front whose touchers' pressed volumes lie behind the face.
 /// Returns how many it trimmed.
-fn trim_touched_fronts(scene: &mut Scene, people: &Occupancy) -> usize {
+fn trim_touched_fronts(scene: &mut Scene, people: &Occupancy, rules: &HoldingConfig) -> usize {
     let mut trimmed = 0;
     for i in 0..scene.objects.len() {
         let held = people.held_by(i);
@@ -24,7 +24,7 @@ fn trim_touched_fronts(scene: &mut Scene, people: &Occupancy) -> usize {
         // that brings the face to the nearest of them.
         let behind = held
             .iter()
-            .filter(|(c, _)| c.action == Action::Touch && touches_front(o, c))
+            .filter(|(c, _)| c.action == Action::Touch && touches_front(o, c, rules))
             .map(|(c, _)| o.size[1] * 0.5 - local_extent(&c.obox, &b).1.y)
             .fold(f64::INFINITY, f64::min);
         if !behind.is_finite() {
@@ -44,8 +44,8 @@ impl RepairStep for TouchedFronts {
         StepName::TouchedFronts
     }
 
-    fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, _config: &RepairConfig) -> StepReport {
-        StepReport::TouchedFronts { trimmed: trim_touched_fronts(scene, &work.people) }
+    fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport {
+        StepReport::TouchedFronts { trimmed: trim_touched_fronts(scene, &work.people, &config.holding) }
     }
 }
 

@@ -10,7 +10,7 @@
 //! more in walking or standing people's way and no further into the pieces that hold people.
 //! The other pieces it now overlaps are left to `overlaps`, which narrows or removes them.
 
-use super::config::{RepairConfig, StepName, WideSeatsConfig};
+use super::config::{RepairConfig, StepName};
 use super::helpers::{fits_inside, is_solid, local_extent, shift};
 use super::occupancy::Occupancy;
 use super::pipeline::{RepairStep, StepReport, Workspace};
@@ -23,7 +23,8 @@ use glam::DVec3;
 /// Widens every sofa whose sitters' or sleepers' boxes overhang its seat at an end (up to the
 /// category's widest real piece, inside the floor plan, no more in people's way and no further into
 /// the pieces that hold people). Returns how many it widened.
-fn widen_for_people(scene: &mut Scene, people: &Occupancy, cfg: &WideSeatsConfig) -> usize {
+fn widen_for_people(scene: &mut Scene, people: &Occupancy, config: &RepairConfig) -> usize {
+    let cfg = &config.wide_seats;
     let polygon = scene.floor_plan.polygon();
     let mut widened = 0;
     for i in 0..scene.objects.len() {
@@ -89,7 +90,7 @@ fn widen_for_people(scene: &mut Scene, people: &Occupancy, cfg: &WideSeatsConfig
                 .sum()
         };
         if grown.size[0] - o.size[0] > 1e-3
-            && fits_inside(&grown.obox(), &polygon)
+            && fits_inside(&grown.obox(), &polygon, config.gap)
             && in_the_way(&grown) <= in_the_way(o)
             && holders_overlapped(&grown) <= holders_overlapped(o) + 1e-9
         {
@@ -132,7 +133,7 @@ impl RepairStep for WideSeats {
     }
 
     fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport {
-        StepReport::WideSeats { widened: widen_for_people(scene, &work.people, &config.wide_seats) }
+        StepReport::WideSeats { widened: widen_for_people(scene, &work.people, config) }
     }
 }
 
@@ -163,7 +164,7 @@ mod tests {
             })
             .collect();
         scene.objects = vec![sofa];
-        let mut people = Occupancy::of(&scene);
+        let mut people = Occupancy::of(&scene, &Default::default());
         people.holders = (0..people.cond.contact_boxes.len())
             .filter(|&b| people.cond.contact_boxes[b].action == Action::Sit)
             .map(|b| (b, 0))
@@ -192,7 +193,7 @@ mod tests {
         let (lo, hi) = boxes_ends(&people);
         let (start, end) = seat_ends(&scene.objects[0]);
         assert!(start > lo + 0.1 && end < hi - 0.1, "both sitters overhang the seat: {lo} {start} {end} {hi}");
-        assert_eq!(widen_for_people(&mut scene, &people, &WideSeatsConfig::default()), 1);
+        assert_eq!(widen_for_people(&mut scene, &people, &RepairConfig::default()), 1);
         let o = &scene.objects[0];
         let (start, end) = seat_ends(o);
         assert!(start <= lo + 1e-6 && end >= hi - 1e-6, "the seat spans both: {lo} {start} {end} {hi}");
@@ -206,7 +207,7 @@ mod tests {
     fn a_sofa_grows_only_on_the_side_its_sitter_overhangs() {
         let (mut scene, people) = sofa_with_sitters(0.0, &[2.8]);
         let west_end = scene.objects[0].center[0] - scene.objects[0].size[0] * 0.5;
-        assert_eq!(widen_for_people(&mut scene, &people, &WideSeatsConfig::default()), 1);
+        assert_eq!(widen_for_people(&mut scene, &people, &RepairConfig::default()), 1);
         let o = &scene.objects[0];
         assert!((o.center[0] - o.size[0] * 0.5 - west_end).abs() < 1e-9, "the west end stays");
         assert!(seat_ends(o).1 >= boxes_ends(&people).1 - 1e-6);
@@ -217,7 +218,7 @@ mod tests {
         // The west wall 3 cm beyond the sofa's west end: growing west would cross it.
         let (mut scene, people) = sofa_with_sitters(1.03, &[1.2]);
         let before = scene.objects.clone();
-        assert_eq!(widen_for_people(&mut scene, &people, &WideSeatsConfig::default()), 0);
+        assert_eq!(widen_for_people(&mut scene, &people, &RepairConfig::default()), 0);
         assert_eq!(scene.objects, before);
     }
 
@@ -228,7 +229,7 @@ mod tests {
         let (mut scene, people) = sofa_with_sitters(0.0, &[0.5, 3.5]);
         let widest = size_range(Category::MultiSeatSofa, 0).1;
         assert!(widest < 3.2, "{widest}");
-        assert_eq!(widen_for_people(&mut scene, &people, &WideSeatsConfig::default()), 1);
+        assert_eq!(widen_for_people(&mut scene, &people, &RepairConfig::default()), 1);
         let o = &scene.objects[0];
         assert!((o.size[0] - widest).abs() < 1e-9 && (o.center[0] - 2.0).abs() < 1e-9, "{:?}", o);
     }
@@ -256,7 +257,7 @@ mod tests {
         let (mut scene, people) = sofa_with_sleeper(RoomType::Living, Category::LoveseatSofa);
         let (head, feet) = body_ends(&scene);
         assert!(seat_ends(&scene.objects[0]).0 > head, "the head is over the arm first");
-        assert_eq!(widen_for_people(&mut scene, &people, &WideSeatsConfig::default()), 1);
+        assert_eq!(widen_for_people(&mut scene, &people, &RepairConfig::default()), 1);
         let o = &scene.objects[0];
         assert_eq!(o.category, Category::MultiSeatSofa);
         let (west, east) = seat_ends(o);
@@ -264,7 +265,7 @@ mod tests {
         assert!(o.size[0] <= size_range(Category::MultiSeatSofa, 0).1);
         // A bedroom has no multi-seat sofas: its sofa grows only as far as real ones go.
         let (mut scene, people) = sofa_with_sleeper(RoomType::Bedroom, Category::Sofa);
-        widen_for_people(&mut scene, &people, &WideSeatsConfig::default());
+        widen_for_people(&mut scene, &people, &RepairConfig::default());
         let o = &scene.objects[0];
         assert_eq!(o.category, Category::Sofa);
         assert!(o.size[0] <= size_range(Category::Sofa, 0).1 + 1e-9, "{:?}", o);
