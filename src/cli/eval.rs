@@ -8,13 +8,23 @@
 //! `ckl_floor` in `--json` and `--out`; for rows as large as the test split, also the CKL of real
 //! layouts that keep each test scene's own contact pieces (`eval::contact_floor`, `ckl_contact_floor`).
 //! `--baseline NAME` adds each row's layout metrics relative to the row NAME (`layout_ratio`).
+//!
+//! Realism beyond SHADE's table, against the same reference scenes: each category's per-room count
+//! distribution (`count KL`, the mean over categories of KL(reference ‖ row), and `unseen`, the
+//! share of the row's rooms with a count no reference room has; `counts` in JSON, with the
+//! offending category counts) and SCA (`eval::sca`: the held-out accuracy of a small classifier
+//! trained to tell the row's layouts from the reference's; 0.5 is indistinguishable). `--no-sca`
+//! skips SCA.
 
 use super::output::{print_json, print_text};
 use super::{ExitStatus, GlobalArgs};
 use anyhow::Context;
 use clap::Args;
 use rayon::prelude::*;
-use shade_sim::eval::{CklFloor, EvalRow, PhysicsRates, category_frequencies, ckl_floor, contact_floor, evaluate};
+use shade_sim::eval::{
+    CklFloor, CountDistribution, EvalRow, PhysicsRates, ScaConfig, category_frequencies, ckl_floor, contact_floor,
+    count_report, evaluate, sca,
+};
 use shade_sim::scene::{Action, RoomType, Scene};
 use shade_sim::sim::{CheckConfig, ViolationKind, check_scene};
 use std::path::{Path, PathBuf};
@@ -37,6 +47,9 @@ pub struct EvalArgs {
     /// mean of Col_mot, R_out and Col_obj each over the baseline's (`layout_ratio`).
     #[arg(long)]
     pub baseline: Option<String>,
+    /// Skip SCA, the classifier two-sample test (a few seconds a row).
+    #[arg(long)]
+    pub no_sca: bool,
 }
 
 /// The scene files under `dir` (recursively, not stats.json / calibration.json), sorted; an error
@@ -93,6 +106,7 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     let reference = load_all(if test.is_dir() { &test } else { &args.reference })?;
     let room = reference[0].room_type;
     let freq = category_frequencies(reference.iter(), room);
+    let counts = CountDistribution::of(&reference, room);
     let mut rows = Vec::new();
     for dir in &args.pred {
         let scenes = load_all(dir)?;
@@ -109,6 +123,10 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
         let mut row = evaluate(&name, &scenes, room, &freq);
         if !args.no_physics {
             row.physics = Some(physics(&scenes));
+        }
+        row.counts = Some(count_report(&scenes, &counts));
+        if !args.no_sca {
+            row.sca = sca(&scenes, &reference, &ScaConfig::default());
         }
         rows.push(row);
     }
@@ -180,7 +198,7 @@ fn ckl_floors(
 fn table(rows: &[EvalRow]) -> String {
     let ratio = rows.iter().any(|r| r.layout_ratio.is_some());
     let mut t = String::from(
-        "method               scenes  contact IoU↑  Col_mot↓  R_out↓  Col_obj↓  CKL↓    E_pen↓  pen. scenes↓  unsupported↓  unstable↓  violating↓",
+        "method               scenes  contact IoU↑  Col_mot↓  R_out↓  Col_obj↓  CKL↓    count KL↓  unseen↓  SCA→0.5  E_pen↓  pen. scenes↓  unsupported↓  unstable↓  violating↓",
     );
     t.push_str(if ratio { "  layout÷base↓\n" } else { "\n" });
     for r in rows {
@@ -194,8 +212,13 @@ fn table(rows: &[EvalRow]) -> String {
             },
         );
         let q = r.layout_ratio.map_or_else(String::new, |q| format!("  {q:>12.3}"));
+        let (count_kl, unseen) = r
+            .counts
+            .as_ref()
+            .map_or(("-".into(), "-".into()), |c| (format!("{:.3}", c.count_kl), format!("{:.3}", c.unseen_rooms)));
+        let sca = r.sca.as_ref().map_or("-".into(), |s| format!("{:.3}", s.accuracy));
         t.push_str(&format!(
-            "{:<20} {:>6}  {:>12.3}  {:>8.3}  {:>6.3}  {:>8.3}  {:>6.3}  {:>6.2}{p}{q}\n",
+            "{:<20} {:>6}  {:>12.3}  {:>8.3}  {:>6.3}  {:>8.3}  {:>6.3}  {count_kl:>9}  {unseen:>7}  {sca:>7}  {:>6.2}{p}{q}\n",
             r.name, r.scenes, r.contact_iou, r.col_mot, r.r_out, r.col_obj, r.ckl, r.e_pen
         ));
     }

@@ -2,7 +2,8 @@
 //! category frequencies. Physics rates come from `sim` and are filled in by the caller.
 
 use super::{
-    CklFloor, FurnitureField, LayoutCounts, category_frequencies, category_kl, contact_iou, human_penetration,
+    CklFloor, CountReport, FurnitureField, LayoutCounts, Sca, category_frequencies, category_kl, contact_iou,
+    human_penetration,
 };
 use crate::human::contact_boxes;
 use crate::scene::{RoomType, Scene};
@@ -56,6 +57,12 @@ pub struct EvalRow {
     /// data scores on CKL (`eval::contact_floor`), for a row of the reference's own size.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ckl_contact_floor: Option<CklFloor>,
+    /// Per-room category counts against the reference's (`eval::count_report`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub counts: Option<CountReport>,
+    /// The SCA two-sample test against the reference's layouts (`eval::sca`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sca: Option<Sca>,
 }
 
 impl EvalRow {
@@ -100,6 +107,8 @@ pub fn evaluate(name: &str, scenes: &[Scene], room: RoomType, reference: &[f64])
         layout_ratio: None,
         ckl_floor: None,
         ckl_contact_floor: None,
+        counts: None,
+        sca: None,
     }
 }
 
@@ -121,6 +130,8 @@ mod tests {
             layout_ratio: None,
             ckl_floor: None,
             ckl_contact_floor: None,
+            counts: None,
+            sca: None,
         }
     }
 
