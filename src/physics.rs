@@ -1,5 +1,6 @@
-//! The physics that guidance and repair may ask about, as a trait (`sim` implements it with exact
-//! geometry and a Rapier replay). Generation and repair depend on this, never on `sim` itself.
+//! The physics that guidance, repair and the dataset builders may ask about, as a trait (`sim`
+//! implements it with exact geometry and a Rapier replay). Generation, repair and `data` depend on
+//! this, never on `sim` itself.
 //!
 //! It defines the questions and the answers' types; it computes nothing.
 
@@ -30,8 +31,12 @@ pub struct EngineContact {
     pub depth: f64,
 }
 
-/// The bodies-against-furniture questions generation and repair ask.
+/// The bodies-against-furniture questions generation, repair and the dataset builders ask.
 pub trait Physics: Send + Sync {
+    /// Whether `shade-sim check` with its default settings finds nothing wrong with `scene` (no
+    /// penetration, missing support, overlap, piece through a wall or unstable piece).
+    fn passes_check(&self, scene: &Scene) -> bool;
+
     /// Every bone in a piece or a wall deeper than `tolerance` (m), with the check's own exact
     /// depths: the deepest solid per owner, per bone and frame.
     fn exact_contacts(&self, scene: &Scene, tolerance: f64) -> Vec<EngineContact>;
@@ -43,3 +48,49 @@ pub trait Physics: Send + Sync {
 
 /// Penetrations shallower than this are not pushed or repaired (m), as in the check.
 pub const PHYS_TOLERANCE: f64 = 0.02;
+
+/// Judges for tests.
+#[cfg(test)]
+pub(crate) mod testing {
+    use super::{EngineContact, Physics};
+    use crate::scene::Scene;
+    use glam::DVec2;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    /// Fails the first `fail` scenes with at least `min_humans` people it is asked to check and
+    /// passes the rest (scenes with fewer people always); sees no contacts.
+    #[derive(Debug, Default)]
+    pub struct FailFirst {
+        /// Scenes to fail.
+        pub fail: usize,
+        /// Fewest people a scene it counts has.
+        pub min_humans: usize,
+        /// Scenes counted so far.
+        pub asked: AtomicUsize,
+    }
+
+    impl FailFirst {
+        pub fn new(fail: usize) -> FailFirst {
+            FailFirst { fail, min_humans: 0, asked: AtomicUsize::new(0) }
+        }
+
+        /// Counting only scenes with at least two people (not one person checked alone).
+        pub fn rooms(fail: usize) -> FailFirst {
+            FailFirst { min_humans: 2, ..FailFirst::new(fail) }
+        }
+    }
+
+    impl Physics for FailFirst {
+        fn passes_check(&self, scene: &Scene) -> bool {
+            scene.humans.len() < self.min_humans || self.asked.fetch_add(1, Ordering::SeqCst) >= self.fail
+        }
+
+        fn exact_contacts(&self, _: &Scene, _: f64) -> Vec<EngineContact> {
+            Vec::new()
+        }
+
+        fn pushes(&self, _: &Scene, _: f64) -> Vec<(usize, DVec2)> {
+            Vec::new()
+        }
+    }
+}

@@ -1,9 +1,11 @@
-//! `shade-sim synth --room R --scenes N --seed S --out DIR`: the procedural dataset.
+//! `shade-sim synth --room R --scenes N --seed S --out DIR [--require-clean]`: the procedural dataset.
 
 use super::output::{print_json, print_text};
 use super::{ExitStatus, GlobalArgs, RoomArg};
 use clap::Args;
 use shade_sim::data::{DatasetStats, SynthConfig, synthesize};
+use shade_sim::physics::Physics;
+use shade_sim::sim::SimPhysics;
 use std::path::PathBuf;
 
 #[derive(Debug, Args)]
@@ -20,6 +22,10 @@ pub struct SynthArgs {
     /// Output folder.
     #[arg(long)]
     pub out: PathBuf,
+    /// Draw a room again (up to 8 draws) while `check` fails it with everyone where they were
+    /// placed; stats.json counts the rooms that pass and those drawn again.
+    #[arg(long)]
+    pub require_clean: bool,
 }
 
 pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
@@ -29,16 +35,18 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
         scenes: args.scenes,
         seed: args.seed,
         command: format!(
-            "shade-sim synth --room {} --scenes {} --seed {} --out {}",
+            "shade-sim synth --room {} --scenes {} --seed {} --out {}{}",
             args.room.name(),
             args.scenes,
             args.seed,
-            args.out.display()
+            args.out.display(),
+            if args.require_clean { " --require-clean" } else { "" }
         ),
     };
     let bar = super::progress::bar(global, args.scenes as u64, "synth");
     let start = std::time::Instant::now();
-    let stats = synthesize(&cfg, &args.out, &|_| bar.inc(1))?;
+    let judge = args.require_clean.then_some(&SimPhysics as &dyn Physics);
+    let stats = synthesize(&cfg, &args.out, judge, &|_| bar.inc(1))?;
     bar.finish_and_clear();
     if global.json {
         print_json(&stats)?;
@@ -63,6 +71,12 @@ fn summary(s: &DatasetStats, out: &std::path::Path, seconds: f64) -> String {
         s.category_kl,
         seconds
     );
+    if let (Some(passing), Some(redrawn)) = (all.passing_check, all.redrawn) {
+        text.push_str(&format!(
+            "  check (everyone where placed): {passing} of {} rooms pass, {redrawn} drawn again\n",
+            all.rooms
+        ));
+    }
     let freq = all.frequencies(s.room_type);
     let target = shade_sim::data::target_frequencies(s.room_type);
     text.push_str("  category              ours   3D-FRONT\n");

@@ -20,6 +20,7 @@ use crate::furniture::template;
 use crate::geom::OBox;
 use crate::human::{Motion, SurfaceSampler, contact_boxes, round_mm};
 use crate::measure::{FurnitureField, contact_iou};
+use crate::physics::Physics;
 use crate::scene::{Action, Group, Human, Object, Scene};
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
@@ -61,6 +62,10 @@ pub struct HumanCalibration {
     pub fixed: bool,
     /// Why not, when not.
     pub problem: Option<String>,
+    /// Whether the human was left out of the calibrated scene: checked calibration found no
+    /// placement the check passes even with them alone in the room.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub left_out: bool,
 }
 
 /// A calibrated scene and what happened to each contact human.
@@ -75,13 +80,33 @@ pub struct SceneCalibration {
 struct Judge<'a> {
     field: FurnitureField,
     objects: &'a [Object],
+    /// The scene being calibrated and the check a placement must pass, when calibration is
+    /// checked (`calibrate --require-clean`).
+    check: Option<(&'a Scene, &'a dyn Physics)>,
 }
 
 impl Judge<'_> {
     fn contact(&self, h: &Human) -> Option<(Action, OBox)> {
         contact_boxes(h).first().map(|b| (b.action, b.obox))
     }
+
+    /// Whether the check passes `h` alone with the scene's furniture (always, unchecked).
+    fn passes(&self, h: &Human) -> bool {
+        self.check.is_none_or(|(scene, physics)| passes_alone(scene, h, physics))
+    }
 }
+
+/// Whether `physics`' check passes `h` alone with `scene`'s floor plan and furniture.
+pub fn passes_alone(scene: &Scene, h: &Human, physics: &dyn Physics) -> bool {
+    let mut alone = Scene::new(scene.room_type, scene.floor_plan.clone());
+    alone.objects = scene.objects.clone();
+    alone.humans = vec![h.clone()];
+    physics.passes_check(&alone)
+}
+
+/// Placements that meet the E_pen and IoU bounds the check may refuse before the nearest of them is
+/// taken anyway (checked calibration).
+const CHECKED_CANDIDATES: usize = 12;
 
 /// The piece a contact box belongs to: the affording piece covering it most, else the nearest one
 /// within 2 m.
@@ -208,12 +233,20 @@ fn fix_translation(h: &mut Human, judge: &Judge) -> (Option<usize>, DVec3, bool,
         .filter(|t| t.abs().max_element() <= MAX_TRANSLATION)
         .filter(|&t| iou(t) >= iou_target(action))
         .collect();
-    // First a resting placement (a tenth of the bound), then one within the bound.
+    // First a resting placement (a tenth of the bound), then one within the bound; checked, the
+    // nearest of the first few that the check passes, else the nearest.
     for bound in [0.1 * SAFE_PENETRATION, SAFE_PENETRATION] {
-        if let Some(&t) = candidates.iter().find(|&&t| penetration(t) < bound) {
-            translate(h, t);
-            return (Some(obj), t, true, None);
-        }
+        let resting: Vec<DVec3> =
+            candidates.iter().copied().filter(|&t| penetration(t) < bound).take(CHECKED_CANDIDATES).collect();
+        let moved = |t: DVec3| {
+            let mut moved = h.clone();
+            translate(&mut moved, t);
+            moved
+        };
+        let Some(&nearest) = resting.first() else { continue };
+        let t = resting.iter().copied().find(|&t| judge.passes(&moved(t))).unwrap_or(nearest);
+        translate(h, t);
+        return (Some(obj), t, true, None);
     }
     (Some(obj), DVec3::ZERO, false, Some("no translation within ±2 m meets the E_pen and IoU bounds".into()))
 }
@@ -242,9 +275,15 @@ fn alternative(object: &Object, action: Action) -> Option<Action> {
     }
 }
 
-/// Calibrates one scene; `rng` drives the augmentations.
-pub fn calibrate_scene(scene: &Scene, rng: &mut Rng) -> SceneCalibration {
-    let judge = Judge { field: FurnitureField::new(&scene.objects), objects: &scene.objects };
+/// Calibrates one scene; `rng` drives the augmentations, which run only with `augment`
+/// (translation modification always does). With `check`, each human's placement is the nearest
+/// of the first few within the bounds that the check passes with that human alone in the room.
+pub fn calibrate_scene(scene: &Scene, rng: &mut Rng, augment: bool, check: Option<&dyn Physics>) -> SceneCalibration {
+    let judge = Judge {
+        field: FurnitureField::new(&scene.objects),
+        objects: &scene.objects,
+        check: check.map(|physics| (scene, physics)),
+    };
     let mut out = scene.clone();
     let mut records = Vec::new();
     for h in out.humans.iter_mut() {
@@ -255,7 +294,7 @@ pub fn calibrate_scene(scene: &Scene, rng: &mut Rng) -> SceneCalibration {
         let (mut object, mut t, mut fixed, mut problem) = fix_translation(h, &judge);
         let mut action = action_before;
         // 2. Category augmentation on half of the humans whose piece affords another action.
-        if let Some(o) = object.filter(|_| fixed)
+        if let Some(o) = object.filter(|_| fixed && augment)
             && let Some(alt) = alternative(&scene.objects[o], action)
             && rng.chance(0.5)
         {
@@ -278,7 +317,7 @@ pub fn calibrate_scene(scene: &Scene, rng: &mut Rng) -> SceneCalibration {
             }
         }
         // 3. Orientation augmentation, then translation modification again.
-        if fixed {
+        if fixed && augment {
             let kept = h.clone();
             turn(h, (10.0 * rng.normal()).to_radians());
             let (o3, t3, ok, p3) = fix_translation(h, &judge);
@@ -289,7 +328,7 @@ pub fn calibrate_scene(scene: &Scene, rng: &mut Rng) -> SceneCalibration {
                 *h = kept;
                 problem = p3.map(|p| format!("after turning: {p}"));
             }
-        } else {
+        } else if !fixed {
             *h = original;
         }
         let after_box = judge.contact(h).map(|(_, b)| b);
@@ -308,6 +347,7 @@ pub fn calibrate_scene(scene: &Scene, rng: &mut Rng) -> SceneCalibration {
             translation: t.to_array().map(round_mm),
             fixed,
             problem: if fixed { None } else { problem.or(Some("bounds not met after augmentation".into())) },
+            left_out: false,
         });
     }
     SceneCalibration { scene: out, humans: records }

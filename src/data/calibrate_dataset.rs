@@ -1,10 +1,19 @@
 //! `calibrate`: SHADE's calibration over a whole dataset folder, with a report like the paper's
 //! Table 2 (E_pen and contact IoU before and after).
+//!
+//! With a judge (`calibrate --require-clean`), each human's placement is checked with them alone in
+//! the room (`calibrate_scene`), and a scene the check still fails is calibrated again — with
+//! fresh augmentation draws ([`CALIBRATION_DRAWS`] in all), then without the augmentations and
+//! without the contact people the check fails wherever calibration puts them (left out, marked in
+//! `calibration.json`) — and the first that passes is kept (the first draw when none does); each
+//! split's stats count the scenes that pass and those calibrated again, and `calibration.json`
+//! lists the ones that still fail.
 
-use super::calibrate::{SceneCalibration, calibrate_scene};
+use super::calibrate::{SceneCalibration, calibrate_scene, passes_alone};
 use super::stats::{DatasetStats, SplitStats};
 use super::synth::write_stats;
 use super::{DataError, Rng};
+use crate::physics::Physics;
 use crate::scene::{Action, RoomType, Scene, write_atomic};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -46,6 +55,9 @@ pub struct CalibrationReport {
     pub category_augmented: usize,
     /// The humans left as they were.
     pub unfixable: Vec<Unfixable>,
+    /// With `--require-clean`: the scenes (`split/file`) the check still fails.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub failing_check: Option<Vec<String>>,
     /// The command that ran.
     pub command: String,
 }
@@ -81,6 +93,7 @@ pub fn calibrate_dataset(
     src: &Path,
     out: &Path,
     command: &str,
+    judge: Option<&dyn Physics>,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<CalibrationReport, DataError> {
     let stats = read_stats(src)?;
@@ -95,7 +108,7 @@ pub fn calibrate_dataset(
     }
     let total = jobs.len();
     let done = AtomicUsize::new(0);
-    let results: Vec<(String, &str, SceneCalibration)> = jobs
+    let results: Vec<(String, &str, SceneCalibration, Option<Verdict>)> = jobs
         .par_iter()
         .enumerate()
         .map(|(i, (split, file))| -> Result<_, DataError> {
@@ -106,13 +119,12 @@ pub fn calibrate_dataset(
                     message: format!("a {} scene in a {} dataset", scene.room_type, stats.room_type),
                 });
             }
-            let mut rng = Rng::for_item(stats.seed ^ 0xCA11_B8A7, i as u64);
-            let cal = calibrate_scene(&scene, &mut rng);
+            let (cal, check) = calibrate_checked(&scene, stats.seed, i as u64, judge);
             let name = file.file_name().expect("listed files have names").to_string_lossy().into_owned();
             let target = out.join(split).join(&name);
             write_atomic(&target, cal.scene.to_json().as_bytes()).map_err(|e| DataError::io(&target, e))?;
             progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
-            Ok((format!("{split}/{name}"), *split, cal))
+            Ok((format!("{split}/{name}"), *split, cal, check))
         })
         .collect::<Result<_, _>>()?;
 
@@ -120,8 +132,16 @@ pub fn calibrate_dataset(
     let (mut pen, mut iou, mut n_humans, mut fixed, mut augmented) = ([0.0; 2], [0.0; 2], 0usize, 0usize, 0usize);
     let mut by_action: BTreeMap<Action, ([f64; 2], usize)> = BTreeMap::new();
     let mut unfixable = Vec::new();
-    for (file, split, cal) in &results {
-        splits.entry(split.to_string()).or_default().add(&cal.scene);
+    let mut failing = judge.map(|_| Vec::new());
+    for (file, split, cal, check) in &results {
+        let split_stats = splits.entry(split.to_string()).or_default();
+        split_stats.add(&cal.scene);
+        if let Some(Verdict { passes, again }) = *check {
+            split_stats.add_check(passes, again);
+            if !passes {
+                failing.get_or_insert_with(Vec::new).push(file.clone());
+            }
+        }
         for h in &cal.humans {
             n_humans += 1;
             fixed += h.fixed as usize;
@@ -156,6 +176,7 @@ pub fn calibrate_dataset(
         iou_by_action: by_action.into_iter().map(|(a, (s, n))| (a, s.map(|x| x / n as f64))).collect(),
         category_augmented: augmented,
         unfixable,
+        failing_check: failing,
         command: command.to_string(),
     };
     for s in DatasetStats::SPLITS {
@@ -168,4 +189,91 @@ pub fn calibrate_dataset(
     text.push('\n');
     write_atomic(&path, text.as_bytes()).map_err(|e| DataError::io(&path, e))?;
     Ok(report)
+}
+
+/// Draws of a scene's calibration the check may send back (`calibrate --require-clean`): this many
+/// with augmentation (the first is the unchecked calibration's), then one without.
+pub const CALIBRATION_DRAWS: u64 = 4;
+
+/// What the check said of a scene's checked calibration.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Verdict {
+    /// The kept calibration passes the check.
+    passes: bool,
+    /// The scene was calibrated more than once.
+    again: bool,
+}
+
+/// Calibration of scene `index` of a dataset seeded `seed`; with a `judge`, drawn again while the
+/// check fails it (see the module's header). Returns it and, with a judge, the check's verdict.
+fn calibrate_checked(
+    scene: &Scene,
+    seed: u64,
+    index: u64,
+    judge: Option<&dyn Physics>,
+) -> (SceneCalibration, Option<Verdict>) {
+    let draw = |k: u64, augment: bool| {
+        let mut rng = Rng::for_item(seed ^ 0xCA11_B8A7 ^ k.wrapping_mul(0x9E37_79B9_7F4A_7C15), index);
+        calibrate_scene(scene, &mut rng, augment, judge)
+    };
+    let first = draw(0, true);
+    let Some(judge) = judge else { return (first, None) };
+    // Each human's placement was checked alone; the scene is checked whole (people near each
+    // other, furniture the replay pushes).
+    if judge.passes_check(&first.scene) {
+        return (first, Some(Verdict { passes: true, again: false }));
+    }
+    let plain = || {
+        let mut cal = draw(CALIBRATION_DRAWS, false);
+        let unplaced: Vec<String> = cal
+            .humans
+            .iter()
+            .filter_map(|r| cal.scene.humans.iter().find(|h| h.id == r.human))
+            .filter(|h| !passes_alone(&cal.scene, h, judge))
+            .map(|h| h.id.clone())
+            .collect();
+        cal.scene.humans.retain(|h| !unplaced.contains(&h.id));
+        for r in cal.humans.iter_mut().filter(|r| unplaced.contains(&r.human)) {
+            r.left_out = true;
+            r.fixed = false;
+            r.problem = Some("left out: the check fails them wherever calibration puts them".into());
+        }
+        cal
+    };
+    let again = (1..CALIBRATION_DRAWS).map(|k| draw(k, true)).chain(std::iter::once_with(plain));
+    for cal in again {
+        if judge.passes_check(&cal.scene) {
+            return (cal, Some(Verdict { passes: true, again: true }));
+        }
+    }
+    (first, Some(Verdict { passes: false, again: true }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::data::generate_room;
+    use crate::physics::testing::FailFirst;
+
+    #[test]
+    fn a_calibration_the_check_fails_is_drawn_again_then_made_without_augmentation() {
+        let scene = generate_room(RoomType::Living, 3, 5, true).scene;
+        assert!(scene.humans.len() >= 2);
+        let (unchecked, none) = calibrate_checked(&scene, 3, 5, None);
+        assert_eq!(none, None);
+        let (passing, check) = calibrate_checked(&scene, 3, 5, Some(&FailFirst::rooms(0)));
+        assert_eq!((passing, check), (unchecked.clone(), Some(Verdict { passes: true, again: false })));
+        // Every augmented draw refused: the one without augmentation, which augments nobody.
+        let (plain, check) = calibrate_checked(&scene, 3, 5, Some(&FailFirst::rooms(CALIBRATION_DRAWS as usize)));
+        assert_eq!(check, Some(Verdict { passes: true, again: true }));
+        assert!(plain.humans.iter().all(|h| h.action == h.action_before));
+        assert_eq!(
+            plain,
+            calibrate_scene(&scene, &mut Rng::new(0), false, Some(&FailFirst::rooms(0))),
+            "no draws without augmentation"
+        );
+        // Nothing passes: the first draw, said to fail.
+        let (kept, check) = calibrate_checked(&scene, 3, 5, Some(&FailFirst::rooms(100)));
+        assert_eq!((kept, check), (unchecked, Some(Verdict { passes: false, again: true })));
+    }
 }

@@ -22,13 +22,15 @@ mod threedfront;
 pub use calibrate::{
     HumanCalibration, MAX_TRANSLATION, SAFE_PENETRATION, SceneCalibration, calibrate_scene, contact_object, iou_target,
 };
-pub use calibrate_dataset::{CalibrationReport, Unfixable, calibrate_dataset, read_stats};
+pub use calibrate_dataset::{CALIBRATION_DRAWS, CalibrationReport, Unfixable, calibrate_dataset, read_stats};
 pub use error::DataError;
 pub use floor_gen::{Shape, area_range, sample_floor};
 pub use import::{floor_outline, import_dataset, import_room};
 pub use people::{WALK_FPS, contact_pose, contact_probability, misplace, translate};
 pub use rng::Rng;
-pub use rooms::{RoomRecord, furnish, generate_room, placed_against_wall, sample_categories};
+pub use rooms::{
+    CheckedRoom, RoomRecord, furnish, generate_checked_room, generate_room, placed_against_wall, sample_categories,
+};
 pub use stats::{DATASET_FORMAT, DatasetStats, SplitStats};
-pub use synth::{SynthConfig, split_of, synthesize, write_stats};
+pub use synth::{CLEAN_DRAWS, SynthConfig, split_of, synthesize, write_stats};
 pub use threedfront::{kl_divergence, target_frequencies};

@@ -77,9 +77,12 @@ pub fn contact_pose(piece: &Placed, action: Action, slot: f64, rng: &mut Rng) ->
             }
             let x = (surface.min.x + surface.max.x) * 0.5 + slot * (ext.x * 0.5 - 0.3).max(0.0);
             // Back against the backrest, unless the seat is deeper than the thighs are long: then
-            // forward until the knees clear the front edge (the lower legs hang in front of it).
+            // forward until the knees clear the front edge (the lower legs hang in front of it);
+            // and forward as far as keeps the leaning torso's capsules clear of the backrest.
             let y = (surface.min.y + 0.15).max(surface.max.y - body.thigh() + KNEE_OVERHANG);
-            sit(&body, to_world(DVec2::new(x, y)), surface.height, b.yaw)
+            let seated = |y: f64| sit(&body, to_world(DVec2::new(x, y)), surface.height, b.yaw);
+            let into_back = torso_behind(&body, &seated(y), b, surface.min.y - BACKREST_CLEARANCE);
+            seated(y + into_back.max(0.0))
         }
         (Action::Touch, _) => {
             let x = rng.uniform(-0.3, 0.3) * b.size.x;
@@ -95,6 +98,25 @@ pub fn contact_pose(piece: &Placed, action: Action, slot: f64, rng: &mut Rng) ->
         (Action::Walk | Action::Stand, _) => return None,
     };
     Some((body, pose))
+}
+
+/// Clearance between a sitter's torso and the backrest, which starts at the seat surface's back
+/// edge (m): the check allows 2 cm, the exact capsule reaches past where the pose's joints say.
+const BACKREST_CLEARANCE: f64 = 0.01;
+
+/// How far the torso capsules (pelvis to neck) of `pose` reach behind local y = `limit` of piece
+/// `b` (m; negative when they stay in front of it).
+fn torso_behind(body: &Body, pose: &Pose, b: &OBox, limit: f64) -> f64 {
+    use crate::human::Joint;
+    let torso = [(Joint::Pelvis, Joint::Spine), (Joint::Spine, Joint::Chest), (Joint::Chest, Joint::Neck)];
+    let mut reach = f64::NEG_INFINITY;
+    for (a, c) in torso {
+        let radius = body.bone_radius(a, c).unwrap_or(0.0);
+        for j in [a, c] {
+            reach = reach.max(limit - (b.to_local(pose.get(j)).y - radius));
+        }
+    }
+    reach
 }
 
 /// How many people a piece seats side by side.

@@ -6,6 +6,7 @@ use super::floor_gen::sample_floor;
 use super::layout::{Layout, placement_rank};
 use super::people::{contact_humans, misplace, walkers};
 use super::threedfront::{BEDROOM_COUNTS, BEDROOM_ROOMS, LIVING_COUNTS};
+use crate::physics::Physics;
 use crate::scene::{Category, Group, RoomType, Scene};
 
 /// Mean objects per living and dining room (3D-FRONT's living rooms average about nine pieces).
@@ -165,15 +166,60 @@ pub struct RoomRecord {
 /// Generates room `index` of a dataset seeded by `seed`. With `raw`, contact humans are misplaced
 /// as in 3D-FRONT HUMAN; without, they rest exactly where they were placed.
 pub fn generate_room(room: RoomType, seed: u64, index: u64, raw: bool) -> RoomRecord {
-    let mut rng = super::Rng::for_item(seed, index);
-    let plan = sample_floor(room, &mut rng);
+    let mut rng = Rng::for_item(seed, index);
+    let clean = draw_room(room, &mut rng);
+    if raw { misplaced(clean, &mut rng) } else { clean }
+}
+
+/// Room `index` as [`generate_room`] makes it, drawn again (up to `attempts` draws in all) until
+/// `judge` passes its clean version (everyone where they were placed): a synthetic room the
+/// product's own check rejects would teach a model what the product refuses. The first draw is
+/// [`generate_room`]'s; the last is kept when none passes.
+pub fn generate_checked_room(
+    room: RoomType,
+    seed: u64,
+    index: u64,
+    raw: bool,
+    judge: &dyn Physics,
+    attempts: usize,
+) -> CheckedRoom {
+    let attempts = attempts.max(1);
+    for draw in 0..attempts {
+        // Draw 0 is generate_room's stream; later draws their own.
+        let stream = seed ^ (draw as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        let mut rng = Rng::for_item(stream, index);
+        let clean = draw_room(room, &mut rng);
+        let passes = judge.passes_check(&clean.scene);
+        if passes || draw + 1 == attempts {
+            let record = if raw { misplaced(clean, &mut rng) } else { clean };
+            return CheckedRoom { record, passes, draw };
+        }
+    }
+    unreachable!("the last draw returns")
+}
+
+/// A room from [`generate_checked_room`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct CheckedRoom {
+    /// The room (misplaced when asked for raw).
+    pub record: RoomRecord,
+    /// Whether its clean version passes the check.
+    pub passes: bool,
+    /// Which draw it is (0: [`generate_room`]'s).
+    pub draw: usize,
+}
+
+/// A room drawn from `rng`: floor plan, furniture, contact humans resting where they were placed,
+/// walkers.
+fn draw_room(room: RoomType, rng: &mut Rng) -> RoomRecord {
+    let plan = sample_floor(room, rng);
     let mut layout = Layout::new(&plan);
     // Redraw until the room holds at least three pieces and its defining piece (a bed in a
     // bedroom, a dining table in a dining room).
     for _ in 0..20 {
         layout = Layout::new(&plan);
-        let wanted = sample_categories(room, &mut rng);
-        furnish(&mut layout, room, wanted, &mut rng);
+        let wanted = sample_categories(room, rng);
+        furnish(&mut layout, room, wanted, rng);
         let has = |g: &dyn Fn(Category) -> bool| layout.placed.iter().any(|p| g(p.category));
         let defining = match room {
             RoomType::Bedroom => has(&|c| c.group() == Group::Bed),
@@ -185,18 +231,14 @@ pub fn generate_room(room: RoomType, seed: u64, index: u64, raw: bool) -> RoomRe
         }
     }
     let objects = layout.objects();
-    let contact = contact_humans(&layout, &objects, &mut rng);
+    let contact = contact_humans(&layout, &objects, rng);
     let contact_bodies: Vec<_> = contact.iter().map(|(_, _, h)| h.clone()).collect();
     let n_walkers = rng.range(2, 4);
-    let walking = walkers(&layout, &contact_bodies, n_walkers, &mut rng);
+    let walking = walkers(&layout, &contact_bodies, n_walkers, rng);
     let mut scene = Scene::new(room, plan);
     scene.objects = objects;
     let mut contact_objects = Vec::new();
-    for (k, (action, object, mut human)) in contact.into_iter().enumerate() {
-        if raw {
-            let size = scene.objects[object].size;
-            misplace(&mut human, action, size[0].max(size[1]), &mut rng);
-        }
+    for (k, (_, object, mut human)) in contact.into_iter().enumerate() {
         human.id = format!("h{k}");
         contact_objects.push(object);
         scene.humans.push(human);
@@ -206,4 +248,48 @@ pub fn generate_room(room: RoomType, seed: u64, index: u64, raw: bool) -> RoomRe
         scene.humans.push(w);
     }
     RoomRecord { scene, contact_objects }
+}
+
+/// `record` with its contact humans misplaced as in 3D-FRONT HUMAN (draws from `rng`, one human
+/// after the other).
+fn misplaced(mut record: RoomRecord, rng: &mut Rng) -> RoomRecord {
+    for (k, &object) in record.contact_objects.iter().enumerate() {
+        let size = record.scene.objects[object].size;
+        let human = &mut record.scene.humans[k];
+        let action = human.actions[0].action;
+        misplace(human, action, size[0].max(size[1]), rng);
+    }
+    record
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::testing::FailFirst;
+    use std::sync::atomic::Ordering;
+
+    #[test]
+    fn a_room_the_check_fails_is_drawn_again_and_the_first_draw_is_generate_rooms() {
+        for raw in [false, true] {
+            let first = generate_room(RoomType::Dining, 2, 7, raw);
+            let passing = generate_checked_room(RoomType::Dining, 2, 7, raw, &FailFirst::new(0), 8);
+            assert_eq!((passing.passes, passing.draw), (true, 0));
+            assert_eq!(passing.record, first);
+            // Two draws refused: the third is kept, a room of its own.
+            let judge = FailFirst::new(2);
+            let third = generate_checked_room(RoomType::Dining, 2, 7, raw, &judge, 8);
+            assert_eq!((third.passes, third.draw, judge.asked.load(Ordering::SeqCst)), (true, 2, 3));
+            assert_ne!(third.record.scene.objects, first.scene.objects);
+            // None passes: the last draw, said to fail.
+            let none = generate_checked_room(RoomType::Dining, 2, 7, raw, &FailFirst::new(100), 4);
+            assert_eq!((none.passes, none.draw), (false, 3));
+        }
+        // The raw room is its clean draw with the contact people misplaced.
+        let judge = FailFirst::new(1);
+        let clean = generate_checked_room(RoomType::Bedroom, 2, 3, false, &judge, 8).record;
+        let raw = generate_checked_room(RoomType::Bedroom, 2, 3, true, &FailFirst::new(1), 8).record;
+        assert_eq!((&clean.scene.objects, &clean.contact_objects), (&raw.scene.objects, &raw.contact_objects));
+        let moved = clean.scene.humans.iter().zip(&raw.scene.humans).filter(|(a, b)| a.frames != b.frames).count();
+        assert_eq!(moved, raw.contact_objects.len());
+    }
 }

@@ -28,6 +28,13 @@ pub struct SplitStats {
     pub size_max: [f64; 3],
     /// Humans by action label of their first contact span (`walk` for walkers).
     pub humans: BTreeMap<String, usize>,
+    /// Rooms that pass `shade-sim check`, for a dataset made with `--require-clean`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub passing_check: Option<usize>,
+    /// Rooms the check sent back: drawn again (`synth`) or calibrated again (`calibrate`), for a
+    /// dataset made with `--require-clean`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub redrawn: Option<usize>,
 }
 
 impl SplitStats {
@@ -60,6 +67,12 @@ impl SplitStats {
             let label = h.contact_spans().next().map_or("walk", |s| s.action.name());
             *self.humans.entry(label.to_string()).or_insert(0) += 1;
         }
+    }
+
+    /// Counts one checked room: whether it passes the check, and whether it was drawn again.
+    pub fn add_check(&mut self, passes: bool, redrawn: bool) {
+        *self.passing_check.get_or_insert(0) += usize::from(passes);
+        *self.redrawn.get_or_insert(0) += usize::from(redrawn);
     }
 
     /// Category frequencies in the room type's one-hot order.
@@ -106,6 +119,10 @@ impl DatasetStats {
             all.rooms += s.rooms;
             for (c, n) in &s.category_counts {
                 *all.category_counts.entry(*c).or_insert(0) += n;
+            }
+            if let (Some(p), Some(r)) = (s.passing_check, s.redrawn) {
+                *all.passing_check.get_or_insert(0) += p;
+                *all.redrawn.get_or_insert(0) += r;
             }
         }
         all

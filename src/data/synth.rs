@@ -3,12 +3,15 @@
 //! Rooms are generated in parallel, each from its own seed stream (so the output does not depend on
 //! the number of threads), written as `DIR/{train,val,test}/<room>-<index>.json` (80/10/10 by a
 //! seeded shuffle of the indices) and summarised in `DIR/stats.json`. Every file is written
-//! atomically. Progress is reported through a callback.
+//! atomically. Progress is reported through a callback. With a judge (`synth --require-clean`),
+//! a room whose clean version the check fails is drawn again ([`generate_checked_room`]), and
+//! each split's stats count the rooms that pass and those drawn again.
 
-use super::rooms::generate_room;
+use super::rooms::{generate_checked_room, generate_room};
 use super::stats::{DATASET_FORMAT, DatasetStats, SplitStats};
 use super::threedfront::{kl_divergence, target_frequencies};
 use super::{DataError, Rng};
+use crate::physics::Physics;
 use crate::scene::{RoomType, write_atomic};
 use rayon::prelude::*;
 use std::collections::BTreeMap;
@@ -28,6 +31,9 @@ pub struct SynthConfig {
     /// The command line, recorded in `stats.json`.
     pub command: String,
 }
+
+/// Draws of one room the check may send back before the last is kept (`synth --require-clean`).
+pub const CLEAN_DRAWS: usize = 8;
 
 /// The split of each room index: a seeded shuffle, then 80 % train, 10 % val, 10 % test.
 pub fn split_of(scenes: usize, seed: u64) -> Vec<&'static str> {
@@ -52,7 +58,12 @@ pub fn split_of(scenes: usize, seed: u64) -> Vec<&'static str> {
 ///
 /// # Errors
 /// [`DataError::Io`] when a folder or file cannot be written.
-pub fn synthesize(cfg: &SynthConfig, out: &Path, progress: &(dyn Fn(usize) + Sync)) -> Result<DatasetStats, DataError> {
+pub fn synthesize(
+    cfg: &SynthConfig,
+    out: &Path,
+    judge: Option<&dyn Physics>,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<DatasetStats, DataError> {
     for s in DatasetStats::SPLITS {
         let dir = out.join(s);
         std::fs::create_dir_all(&dir).map_err(|e| DataError::io(&dir, e))?;
@@ -61,15 +72,23 @@ pub fn synthesize(cfg: &SynthConfig, out: &Path, progress: &(dyn Fn(usize) + Syn
     let done = AtomicUsize::new(0);
     let per_split: Mutex<BTreeMap<String, SplitStats>> = Mutex::new(BTreeMap::new());
     (0..cfg.scenes).into_par_iter().try_for_each(|i| -> Result<(), DataError> {
-        let record = generate_room(cfg.room, cfg.seed, i as u64, true);
+        let (record, check) = match judge {
+            None => (generate_room(cfg.room, cfg.seed, i as u64, true), None),
+            Some(judge) => {
+                let c = generate_checked_room(cfg.room, cfg.seed, i as u64, true, judge, CLEAN_DRAWS);
+                (c.record, Some((c.passes, c.draw > 0)))
+            }
+        };
         let path = out.join(split[i]).join(format!("{}-{i:05}.json", cfg.room));
         write_atomic(&path, record.scene.to_json().as_bytes()).map_err(|e| DataError::io(&path, e))?;
-        per_split
-            .lock()
-            .expect("no panics while holding the lock")
-            .entry(split[i].to_string())
-            .or_default()
-            .add(&record.scene);
+        {
+            let mut splits = per_split.lock().expect("no panics while holding the lock");
+            let stats = splits.entry(split[i].to_string()).or_default();
+            stats.add(&record.scene);
+            if let Some((passes, redrawn)) = check {
+                stats.add_check(passes, redrawn);
+            }
+        }
         progress(done.fetch_add(1, Ordering::Relaxed) + 1);
         Ok(())
     })?;

@@ -1,5 +1,6 @@
-//! `sim`'s answer to [`crate::physics::Physics`]: exact capsule–box depths and the Rapier replay's
-//! pushes, for guidance and repair, which see physics only through the trait.
+//! `sim`'s answer to [`crate::physics::Physics`]: the check's verdict, exact capsule–box depths and
+//! the Rapier replay's pushes, for guidance, repair and the dataset builders, which see physics
+//! only through the trait.
 
 use super::{exact_contacts, rapier_pushes};
 use crate::physics::{EngineContact, Physics};
@@ -11,6 +12,10 @@ use glam::DVec2;
 pub struct SimPhysics;
 
 impl Physics for SimPhysics {
+    fn passes_check(&self, scene: &Scene) -> bool {
+        super::check_scene(scene, &super::CheckConfig::default()).is_clean()
+    }
+
     fn exact_contacts(&self, scene: &Scene, tolerance: f64) -> Vec<EngineContact> {
         exact_contacts(scene, tolerance)
     }

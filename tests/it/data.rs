@@ -68,7 +68,7 @@ fn calibration_fixes_the_raw_defect() {
         let (mut iou, mut n, mut pen) = ([0.0; 2], 0usize, [0.0; 2]);
         for i in 0..80 {
             let raw = generate_room(room, 5, i, true).scene;
-            let cal = calibrate_scene(&raw, &mut Rng::new(i));
+            let cal = calibrate_scene(&raw, &mut Rng::new(i), true, None);
             pen[0] += scene_penetration(&raw);
             pen[1] += scene_penetration(&cal.scene);
             for h in &cal.humans {
@@ -176,6 +176,46 @@ fn synth_and_calibrate_commands_write_deterministic_datasets() {
     assert_eq!(files(&cal).len(), 20);
     let stats: DatasetStats = serde_json::from_slice(&std::fs::read(cal.join("stats.json")).unwrap()).unwrap();
     assert!(!stats.raw);
+    assert_eq!((stats.all().passing_check, report.failing_check), (None, None), "unchecked: no counts");
+}
+
+#[test]
+fn require_clean_makes_datasets_the_check_passes() {
+    let dir = tempfile::tempdir().unwrap();
+    let (raw, cal) = (dir.path().join("raw"), dir.path().join("cal"));
+    for args in [
+        vec![
+            "synth",
+            "--room",
+            "dining",
+            "--scenes",
+            "20",
+            "--seed",
+            "3",
+            "--require-clean",
+            "--out",
+            raw.to_str().unwrap(),
+        ],
+        vec!["calibrate", "--require-clean", "--data", raw.to_str().unwrap(), "--out", cal.to_str().unwrap()],
+    ] {
+        let o = shade_sim(&[&["-q"], &args[..]].concat());
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    }
+    let stats = |dir: &std::path::Path| -> DatasetStats {
+        serde_json::from_slice(&std::fs::read(dir.join("stats.json")).unwrap()).unwrap()
+    };
+    // Synth: every room's clean version passes; the counts add up per split.
+    let synth = stats(&raw);
+    assert!(synth.command.ends_with("--require-clean"));
+    assert_eq!(synth.all().passing_check, Some(20));
+    assert!(synth.all().redrawn.unwrap() <= 20);
+    let report: shade_sim::data::CalibrationReport =
+        serde_json::from_slice(&std::fs::read(cal.join("calibration.json")).unwrap()).unwrap();
+    let failing = report.failing_check.expect("a checked calibration lists what fails");
+    assert_eq!(stats(&cal).all().passing_check, Some(20 - failing.len()));
+    // What the stats say passes, `check` passes.
+    let o = shade_sim(&["-q", "check", "--no-progress", cal.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(if failing.is_empty() { 0 } else { 1 }), "{}", crate::stdout(&o));
 }
 
 #[test]

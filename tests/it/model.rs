@@ -13,7 +13,7 @@ use std::time::Duration;
 fn dataset(dir: &Path, room: RoomType) -> PathBuf {
     let data = dir.join(format!("{room}-data"));
     let cfg = SynthConfig { room, scenes: 12, seed: 4, command: "test".into() };
-    synthesize(&cfg, &data, &|_| {}).expect("synth writes");
+    synthesize(&cfg, &data, None, &|_| {}).expect("synth writes");
     data
 }
 
@@ -67,8 +67,13 @@ fn a_stopped_and_resumed_run_ends_with_the_same_weights_as_an_uninterrupted_one(
 
     // A checkpoint from another dataset is refused.
     let other = dir.path().join("other-data");
-    synthesize(&SynthConfig { room: RoomType::Bedroom, scenes: 12, seed: 5, command: "x".into() }, &other, &|_| {})
-        .unwrap();
+    synthesize(
+        &SynthConfig { room: RoomType::Bedroom, scenes: 12, seed: 5, command: "x".into() },
+        &other,
+        None,
+        &|_| {},
+    )
+    .unwrap();
     let mut wrong = options(&other, &split);
     wrong.resume = true;
     let err = train(&wrong, &AtomicBool::new(false), &mut ()).unwrap_err().to_string();
