@@ -126,24 +126,18 @@ fn files(dir: &std::path::Path) -> Vec<(String, Vec<u8>)> {
     out
 }
 
+/// `shade-sim -q synth` of 20 dining rooms with `seed` and `extra` flags into `out`; asserts it exits 0.
+fn synth_dining(out: &std::path::Path, seed: &str, extra: &[&str]) {
+    let out = out.to_str().unwrap();
+    let args = [&["-q", "synth", "--room", "dining", "--scenes", "20", "--seed", seed, "--out", out], extra].concat();
+    let o = shade_sim(&args);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+}
+
 #[test]
 fn synth_and_calibrate_commands_write_deterministic_datasets() {
     let dir = tempfile::tempdir().unwrap();
-    let run = |out: &str, seed: &str| {
-        let o = shade_sim(&[
-            "-q",
-            "synth",
-            "--room",
-            "dining",
-            "--scenes",
-            "20",
-            "--seed",
-            seed,
-            "--out",
-            dir.path().join(out).to_str().unwrap(),
-        ]);
-        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    };
+    let run = |out: &str, seed: &str| synth_dining(&dir.path().join(out), seed, &[]);
     run("a", "7");
     run("b", "7");
     run("c", "8");
@@ -183,24 +177,17 @@ fn synth_and_calibrate_commands_write_deterministic_datasets() {
 fn require_clean_makes_datasets_the_check_passes() {
     let dir = tempfile::tempdir().unwrap();
     let (raw, cal) = (dir.path().join("raw"), dir.path().join("cal"));
-    for args in [
-        vec![
-            "synth",
-            "--room",
-            "dining",
-            "--scenes",
-            "20",
-            "--seed",
-            "3",
-            "--require-clean",
-            "--out",
-            raw.to_str().unwrap(),
-        ],
-        vec!["calibrate", "--require-clean", "--data", raw.to_str().unwrap(), "--out", cal.to_str().unwrap()],
-    ] {
-        let o = shade_sim(&[&["-q"], &args[..]].concat());
-        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    }
+    synth_dining(&raw, "3", &["--require-clean"]);
+    let o = shade_sim(&[
+        "-q",
+        "calibrate",
+        "--require-clean",
+        "--data",
+        raw.to_str().unwrap(),
+        "--out",
+        cal.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let stats = |dir: &std::path::Path| -> DatasetStats {
         serde_json::from_slice(&std::fs::read(dir.join("stats.json")).unwrap()).unwrap()
     };
