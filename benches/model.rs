@@ -1,8 +1,9 @@
-//! Speed of the SHADE denoiser (the shipped bedroom model; training from random weights) against
-//! the same architecture in PyTorch on the CPU (benches/reference/dit_reference.py):
-//! 200-step DDPM sampling of a batch of 16 bedrooms, and one training step (forward, backward,
-//! AdamW) at the training batch of 32. Ratios (PyTorch time / ours; > 1 means we are faster) are
-//! printed at the end of the run when the reference is installed.
+//! Speed of the SHADE denoiser (the shipped bedroom model's weights) against the same architecture
+//! in PyTorch on the CPU (benches/reference/dit_reference.py): 200-step DDPM sampling of a batch of
+//! 16 bedrooms, and one training step (forward, backward, AdamW) at the training batch of 32, on
+//! the hand-written engine and through candle. Both sides use every core. Ratios (PyTorch time /
+//! ours; > 1 means we are faster) are printed at the end of the run when the reference is
+//! installed.
 //!
 //! Run: `bash benches/reference/setup.sh` once, then `cargo bench --bench model`.
 
@@ -13,8 +14,9 @@ mod common;
 use common::median;
 use shade_sim::data::Rng;
 use shade_sim::generator::{
-    AdamW, AdamWConfig, Bounds, CondTensors, Denoiser, FastDenoiser, Guidance, GuidanceConfig, ModelConfig, Params,
-    Schedule, SpatialGuidance, empty_projection_steps, sample, tokens,
+    AdamW, AdamWConfig, Bounds, CondTensors, Denoiser, Engine, FastDenoiser, Features, Gradients, Guidance,
+    GuidanceConfig, HostBatch, ModelConfig, NoisyBatch, ParamLayout, Params, Schedule, SpatialGuidance,
+    empty_projection_steps, sample, tokens,
 };
 use shade_sim::scene::RoomType;
 use shade_sim::scene::Scene;
@@ -45,18 +47,36 @@ struct Setup {
     cfg: ModelConfig,
     /// The shipped bedroom model's weights (trained: real modulations; speed is the same).
     shipped: Denoiser,
-    model: Denoiser,
-    params: Params,
+    layout: ParamLayout,
+    params: Vec<f32>,
     schedule: Schedule,
 }
 
 fn setup() -> Setup {
     shade_sim::tune_allocator_for_tensors();
     let cfg = ModelConfig::small(RoomType::Bedroom);
-    let mut params = Params::random(0);
-    let model = Denoiser::new(&cfg, &mut params).unwrap();
+    let mut init = Params::random(0);
+    Denoiser::new(&cfg, &mut init).unwrap();
+    let (layout, params) = ParamLayout::of(&init.snapshot().unwrap()).unwrap();
     let shipped = shade_sim::generator::shipped_model(RoomType::Bedroom).unwrap().denoiser;
-    Setup { schedule: Schedule::linear(cfg.diffusion_steps), cfg, model, params, shipped }
+    Setup { schedule: Schedule::linear(cfg.diffusion_steps), cfg, layout, params, shipped }
+}
+
+/// A training run's state: an engine, the parameters and the optimiser.
+struct Trainer {
+    engine: Gradients,
+    params: Vec<f32>,
+    adam: AdamW,
+}
+
+impl Trainer {
+    fn new(s: &Setup, engine: Engine) -> Trainer {
+        Trainer {
+            engine: Gradients::new(engine, &s.cfg, &s.layout).unwrap(),
+            params: s.params.clone(),
+            adam: AdamW::new(s.layout.len(), AdamWConfig::default()),
+        }
+    }
 }
 
 fn sample_once(s: &Setup, rng: &mut Rng) {
@@ -66,13 +86,37 @@ fn sample_once(s: &Setup, rng: &mut Rng) {
     black_box(sample(&s.shipped, &s.schedule, &cond, &seeds, projection, None).unwrap());
 }
 
-fn train_once(s: &Setup, adam: &mut AdamW, rng: &mut Rng) {
-    let shape = [TRAIN_BATCH, s.cfg.slots(), s.cfg.token_dim()];
-    let (x0, noise) = (random(&shape, rng), random(&shape, rng));
-    let t: Vec<usize> = (0..TRAIN_BATCH).map(|_| rng.index(200)).collect();
-    let pred = s.model.forward(&(&x0 + &noise).unwrap(), &t, &conditions(&s.cfg, TRAIN_BATCH, rng)).unwrap();
-    let loss = (pred - noise).unwrap().sqr().unwrap().mean_all().unwrap();
-    adam.step(&loss.backward().unwrap(), 3e-4).unwrap();
+/// A random training batch like the reference's: random tokens and conditions, every weight 1.
+fn train_batch(s: &Setup, rng: &mut Rng) -> NoisyBatch {
+    let cond = conditions(&s.cfg, TRAIN_BATCH, rng);
+    let host_values = |t: &Tensor| t.flatten_all().unwrap().to_vec1::<f32>().unwrap();
+    let (contacts, mask, floor, free) = (
+        host_values(&cond.contacts),
+        host_values(&cond.contact_mask),
+        host_values(&cond.floor),
+        host_values(&cond.free),
+    );
+    let mut host = HostBatch::default();
+    let per = |v: &[f32]| v.len() / TRAIN_BATCH;
+    for i in 0..TRAIN_BATCH {
+        let part = |v: &[f32]| v[i * per(v)..(i + 1) * per(v)].to_vec();
+        host.push_features(&Features {
+            contacts: part(&contacts),
+            contact_mask: part(&mask),
+            floor: part(&floor),
+            free: part(&free),
+        });
+    }
+    let per_item = s.cfg.slots() * s.cfg.token_dim();
+    host.tokens = (0..TRAIN_BATCH * per_item).map(|_| rng.normal() as f32).collect();
+    host.weights = vec![1.0; TRAIN_BATCH * per_item];
+    NoisyBatch::draw(host, &s.schedule, rng, &s.cfg)
+}
+
+fn train_once(s: &Setup, trainer: &mut Trainer, rng: &mut Rng) {
+    let batch = train_batch(s, rng);
+    let (_, grads) = trainer.engine.loss_and_grad(&trainer.params, &batch).unwrap();
+    trainer.adam.step(&mut trainer.params, &grads, 3e-4);
 }
 
 /// 16 procedural bedrooms and their tokens, jittered by 0.05 so objects overlap walls, paths and
@@ -98,9 +142,11 @@ fn guidance_batch(cfg: &ModelConfig) -> (Vec<Scene>, Bounds, Tensor) {
 fn bench(c: &mut Criterion) {
     let s = setup();
     let mut rng = Rng::new(1);
-    let mut adam = AdamW::new(s.params.vars(), AdamWConfig::default()).unwrap();
     c.bench_function("sample 16 bedrooms, 200 steps", |b| b.iter(|| sample_once(&s, &mut rng)));
-    c.bench_function("train step, batch 32", |b| b.iter(|| train_once(&s, &mut adam, &mut rng)));
+    let mut fused = Trainer::new(&s, Engine::Fused);
+    c.bench_function("train step, batch 32 (fused)", |b| b.iter(|| train_once(&s, &mut fused, &mut rng)));
+    let mut candle = Trainer::new(&s, Engine::Candle);
+    c.bench_function("train step, batch 32 (candle)", |b| b.iter(|| train_once(&s, &mut candle, &mut rng)));
     let cond = conditions(&s.cfg, SAMPLE_BATCH, &mut rng);
     let x = random(&[SAMPLE_BATCH, s.cfg.slots(), s.cfg.token_dim()], &mut rng);
     let t = vec![50; SAMPLE_BATCH];
@@ -122,10 +168,12 @@ fn bench(c: &mut Criterion) {
 fn ratios() {
     let s = setup();
     let mut rng = Rng::new(2);
-    let mut adam = AdamW::new(s.params.vars(), AdamWConfig::default()).unwrap();
     let sampling = median(5, || sample_once(&s, &mut rng));
-    let step = median(5, || (0..10).for_each(|_| train_once(&s, &mut adam, &mut rng))) / 10.0;
-    println!("ours: {} parameters, DType {:?}", s.params.count(), DType::F32);
+    let mut fused = Trainer::new(&s, Engine::Fused);
+    let step = median(5, || (0..10).for_each(|_| train_once(&s, &mut fused, &mut rng))) / 10.0;
+    let mut candle = Trainer::new(&s, Engine::Candle);
+    let candle_step = median(3, || (0..5).for_each(|_| train_once(&s, &mut candle, &mut rng))) / 5.0;
+    println!("ours: {} parameters, DType {:?}", s.layout.len(), DType::F32);
     let cond = conditions(&s.cfg, SAMPLE_BATCH, &mut rng);
     let x = random(&[SAMPLE_BATCH, s.cfg.slots(), s.cfg.token_dim()], &mut rng);
     let candle_forward = median(21, || {
@@ -154,7 +202,12 @@ fn ratios() {
         guide * 1e3,
         forward * 1e3
     );
-    println!("ours: sample 16 × 200 steps {:.3} s, train step (batch 32) {:.1} ms", sampling, step * 1e3);
+    println!(
+        "ours: sample 16 × 200 steps {:.3} s, train step (batch 32) {:.1} ms fused, {:.1} ms through candle",
+        sampling,
+        step * 1e3,
+        candle_step * 1e3
+    );
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("benches/reference");
     let python = root.join(".venv/bin/python");
     if !python.exists() {
@@ -182,7 +235,8 @@ fn ratios() {
     );
     println!("ratio: sampling PyTorch / ours = {:.2} (≥ 1: ours faster)", ref_sample / sampling);
     println!("ratio: sampling PyTorch with conditions encoded once / ours = {:.2}", ref_cached / sampling);
-    println!("ratio: training steps per second ours / PyTorch = {:.2}", ref_step / step);
+    println!("ratio: training steps per second ours (fused) / PyTorch = {:.2}", ref_step / step);
+    println!("ratio: training steps per second ours (candle) / PyTorch = {:.2}", ref_step / candle_step);
 }
 
 criterion_group! {

@@ -1,5 +1,5 @@
-//! `shade-sim train --data DIR --out models/ROOM [--steps N] [--resume]`: trains the denoiser on a
-//! calibrated dataset with a progress bar, a JSON-lines log, a loss plot and checkpoints every few
+//! `shade-sim train --data DIR --out models/ROOM [--steps N] [--resume] [--engine fused|candle]`:
+//! trains the denoiser on a calibrated dataset with a progress bar, a JSON-lines log, a loss plot and checkpoints every few
 //! minutes and on Ctrl-C.
 
 use super::output::{print_json, print_text};
@@ -9,7 +9,7 @@ use indicatif::ProgressBar;
 use shade_sim::data::read_stats;
 use shade_sim::export::{LossPoint, render_loss_png};
 use shade_sim::generator::train::LogLine;
-use shade_sim::generator::{GenError, ModelConfig, TrainObserver, TrainOptions, train};
+use shade_sim::generator::{Engine, GenError, ModelConfig, TrainObserver, TrainOptions, train};
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -54,6 +54,10 @@ pub struct TrainArgs {
     /// (0: every object alike). The validation loss stays unweighted.
     #[arg(long, default_value_t = 0.0)]
     pub category_balance: f64,
+    /// Gradient engine: fused (the hand-written pass on every core) or candle (autograd, the
+    /// slower reference it is tested against).
+    #[arg(long, default_value = "fused")]
+    pub engine: Engine,
 }
 
 /// The progress bar, and the model folder where each checkpoint's `loss.png` goes.
@@ -106,6 +110,7 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
         "--category-balance: must be a non-negative number"
     );
     opts.category_balance = args.category_balance;
+    opts.engine = args.engine;
     opts.log_every = args.log_every;
     opts.val_every = args.val_every;
     opts.checkpoint_every = Duration::from_secs_f64(args.checkpoint_minutes.max(0.0) * 60.0);

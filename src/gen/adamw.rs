@@ -1,10 +1,12 @@
-//! AdamW with its moments kept by parameter name, so they can be saved and restored exactly
-//! (candle's optimiser keeps them private), plus global-norm gradient clipping.
+//! AdamW on flat `f32` vectors (parameters, gradients and both moments laid out alike by a
+//! [`super::flat::ParamLayout`]), with global-norm gradient clipping. The moments are plain
+//! vectors, so checkpoints save and restore them exactly.
 
-use super::GenError;
-use candle_core::backprop::GradStore;
-use candle_core::{Tensor, Var};
-use std::collections::BTreeMap;
+use rayon::prelude::*;
+
+/// Elements per parallel piece of the update (fixed, so the gradient norm sums in the same order
+/// on any number of threads).
+const PIECE: usize = 1 << 14;
 
 /// Hyper-parameters.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -28,62 +30,69 @@ impl Default for AdamWConfig {
 }
 
 /// The optimiser and its state.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct AdamW {
     cfg: AdamWConfig,
-    vars: BTreeMap<String, Var>,
-    /// First moments by parameter name.
-    pub m: BTreeMap<String, Tensor>,
-    /// Second moments by parameter name.
-    pub v: BTreeMap<String, Tensor>,
+    /// First moments.
+    pub m: Vec<f32>,
+    /// Second moments.
+    pub v: Vec<f32>,
     /// Updates done.
     pub steps: u64,
 }
 
 impl AdamW {
-    /// A fresh optimiser over `vars`.
-    pub fn new(vars: &BTreeMap<String, Var>, cfg: AdamWConfig) -> Result<AdamW, GenError> {
-        let zeros = |v: &Var| v.as_tensor().zeros_like();
-        let m = vars.iter().map(|(k, v)| Ok((k.clone(), zeros(v)?))).collect::<Result<_, GenError>>()?;
-        let s = vars.iter().map(|(k, v)| Ok((k.clone(), zeros(v)?))).collect::<Result<_, GenError>>()?;
-        Ok(AdamW { cfg, vars: vars.clone(), m, v: s, steps: 0 })
+    /// A fresh optimiser for `len` parameters.
+    pub fn new(len: usize, cfg: AdamWConfig) -> AdamW {
+        AdamW { cfg, m: vec![0.0; len], v: vec![0.0; len], steps: 0 }
     }
 
-    /// Whether no stored moment keeps a computation graph alive.
-    #[cfg(test)]
-    pub fn is_detached(&self) -> bool {
-        self.m.values().chain(self.v.values()).all(|t| !t.track_op())
-    }
-
-    /// One update with learning rate `lr`; returns the gradient norm before clipping.
-    pub fn step(&mut self, grads: &GradStore, lr: f64) -> Result<f64, GenError> {
-        let mut squared = 0.0;
-        let mut found = BTreeMap::new();
-        for (name, var) in &self.vars {
-            if let Some(g) = grads.get(var.as_tensor()) {
-                squared += g.sqr()?.sum_all()?.to_scalar::<f32>()? as f64;
-                found.insert(name.clone(), g.clone());
-            }
-        }
-        let norm = squared.sqrt();
+    /// One update of `params` with `grads` and learning rate `lr`; returns the gradient norm
+    /// before clipping.
+    pub fn step(&mut self, params: &mut [f32], grads: &[f32], lr: f64) -> f64 {
+        assert!(params.len() == self.m.len() && grads.len() == self.m.len(), "vectors of the optimiser's length");
+        let squares: Vec<f64> =
+            grads.par_chunks(PIECE).map(|g| g.iter().map(|&x| (x as f64) * (x as f64)).sum()).collect();
+        let norm = squares.iter().sum::<f64>().sqrt();
         let clip = if norm > self.cfg.clip_norm { self.cfg.clip_norm / norm } else { 1.0 };
         self.steps += 1;
         let t = self.steps as i32;
         let (b1, b2) = (self.cfg.beta1, self.cfg.beta2);
-        let (c1, c2) = (1.0 - b1.powi(t), 1.0 - b2.powi(t));
-        for (name, g) in found {
-            // Moments are detached: a gradient may carry the graph that made it, and a moment that
-            // kept it would keep every earlier step's graph alive.
-            let g = (g.detach() * clip)?;
-            let m = ((&self.m[&name] * b1)? + (&g * (1.0 - b1))?)?.detach();
-            let v = ((&self.v[&name] * b2)? + (g.sqr()? * (1.0 - b2))?)?.detach();
-            let var = &self.vars[&name];
-            let update = ((&m / c1)? / ((&v / c2)?.sqrt()? + self.cfg.eps)?)?;
-            let decayed = (var.as_tensor() * (1.0 - lr * self.cfg.weight_decay))?;
-            var.set(&(decayed - (update * lr)?)?)?;
-            self.m.insert(name.clone(), m);
-            self.v.insert(name, v);
-        }
-        Ok(norm)
+        let (c1, c2) = ((1.0 - b1.powi(t)) as f32, (1.0 - b2.powi(t)) as f32);
+        let (b1, b2, clip) = (b1 as f32, b2 as f32, clip as f32);
+        let (eps, lr_f, decay) = (self.cfg.eps as f32, lr as f32, (1.0 - lr * self.cfg.weight_decay) as f32);
+        params
+            .par_chunks_mut(PIECE)
+            .zip(grads.par_chunks(PIECE))
+            .zip(self.m.par_chunks_mut(PIECE).zip(self.v.par_chunks_mut(PIECE)))
+            .for_each(|((p, g), (m, v))| {
+                for (((p, &g), m), v) in p.iter_mut().zip(g).zip(m.iter_mut()).zip(v.iter_mut()) {
+                    let g = g * clip;
+                    *m = *m * b1 + g * (1.0 - b1);
+                    *v = *v * b2 + g * g * (1.0 - b2);
+                    let update = (*m / c1) / ((*v / c2).sqrt() + eps);
+                    *p = *p * decay - update * lr_f;
+                }
+            });
+        norm
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_first_step_moves_each_parameter_by_the_learning_rate_against_its_gradient() {
+        // After one step m̂ = g and v̂ = g², so the update is lr · sign(g) (ε aside).
+        let mut adam = AdamW::new(3, AdamWConfig::default());
+        let mut p = vec![1.0, 2.0, 3.0];
+        let norm = adam.step(&mut p, &[0.3, -0.4, 0.0], 0.1);
+        assert!((norm - 0.5).abs() < 1e-7);
+        assert!((p[0] - 0.9).abs() < 1e-6 && (p[1] - 2.1).abs() < 1e-6 && p[2] == 3.0, "{p:?}");
+        // A gradient of norm 10 is clipped to 1: the moments see g / 10.
+        let mut clipped = AdamW::new(1, AdamWConfig::default());
+        clipped.step(&mut [0.0], &[10.0], 0.1);
+        assert!((clipped.m[0] - 0.1).abs() < 1e-6, "{}", clipped.m[0]);
     }
 }

@@ -3,8 +3,8 @@
 
 use super::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES};
 use super::model::CondTensors;
-use super::{Bounds, Dihedral, Features, GenError, ModelConfig, tokens};
-use crate::data::DataError;
+use super::{Bounds, Dihedral, Features, GenError, ModelConfig, Schedule, tokens};
+use crate::data::{DataError, Rng};
 use crate::human::Conditions;
 use crate::scene::Scene;
 use candle_core::{Device, Tensor};
@@ -115,10 +115,10 @@ pub struct HostBatch {
     pub tokens: Vec<f32>,
     /// Loss weights, same shape.
     pub weights: Vec<f32>,
-    contacts: Vec<f32>,
-    contact_mask: Vec<f32>,
-    floor: Vec<f32>,
-    free: Vec<f32>,
+    pub(super) contacts: Vec<f32>,
+    pub(super) contact_mask: Vec<f32>,
+    pub(super) floor: Vec<f32>,
+    pub(super) free: Vec<f32>,
 }
 
 impl HostBatch {
@@ -153,6 +153,45 @@ impl HostBatch {
     /// A tensor of shape (B, slots, token_dim) from host values laid out like the tokens.
     pub fn token_tensor(&self, values: &[f32], cfg: &ModelConfig) -> Result<Tensor, GenError> {
         Ok(Tensor::from_slice(values, (self.size, cfg.slots(), cfg.token_dim()), &Device::Cpu)?)
+    }
+}
+
+/// A training batch: clean scenes, one diffusion step per scene, the noise the model must predict
+/// and the noisy tokens it sees.
+#[derive(Debug, Clone)]
+pub struct NoisyBatch {
+    /// The clean batch (tokens, loss weights, conditions).
+    pub host: HostBatch,
+    /// Diffusion step of each scene.
+    pub t: Vec<usize>,
+    /// ε, laid out like the tokens.
+    pub noise: Vec<f32>,
+    /// x_t = √ᾱ_t x₀ + √(1 − ᾱ_t) ε.
+    pub noisy: Vec<f32>,
+}
+
+impl NoisyBatch {
+    /// Draws the steps, then the noise, from `rng` (in that order: runs and resumes depend on it).
+    pub fn draw(host: HostBatch, schedule: &Schedule, rng: &mut Rng, cfg: &ModelConfig) -> NoisyBatch {
+        let per_item = cfg.slots() * cfg.token_dim();
+        let t: Vec<usize> = (0..host.size).map(|_| rng.index(schedule.steps())).collect();
+        let noise: Vec<f32> = (0..host.size * per_item).map(|_| rng.normal() as f32).collect();
+        let noisy = host
+            .tokens
+            .iter()
+            .zip(&noise)
+            .enumerate()
+            .map(|(k, (&x0, &n))| {
+                let ab = schedule.alpha_bars[t[k / per_item]];
+                (ab.sqrt() as f32) * x0 + ((1.0 - ab).sqrt() as f32) * n
+            })
+            .collect();
+        NoisyBatch { host, t, noise, noisy }
+    }
+
+    /// The loss's denominator: the sum of the loss weights, at least 1.
+    pub fn weight_total(&self) -> f32 {
+        self.host.weights.iter().sum::<f32>().max(1.0)
     }
 }
 

@@ -25,3 +25,13 @@ pub fn shipped_model(room: RoomType) -> Result<Checkpoint, GenError> {
 pub fn shipped_rooms() -> Vec<RoomType> {
     RoomType::ALL.into_iter().filter(|r| SHIPPED.iter().any(|(name, _, _)| *name == r.name())).collect()
 }
+
+/// The shipped model's weights by name (tests that need trained values).
+#[cfg(test)]
+pub(crate) fn shipped_weights(room: RoomType) -> std::collections::BTreeMap<String, candle_core::Tensor> {
+    let (_, _, weights) = SHIPPED.iter().find(|(r, _, _)| *r == room.name()).expect("a shipped model");
+    super::checkpoint::read_tensors(weights, &PathBuf::from("model.safetensors"))
+        .expect("shipped weights")
+        .into_iter()
+        .collect()
+}

@@ -1,5 +1,6 @@
 //! Training: L_simple (ε-prediction MSE, weighted so empty slots' attributes carry no loss) with
-//! AdamW, linear warm-up then cosine decay, EMA weights, validation loss of the EMA weights on a
+//! AdamW, linear warm-up then cosine decay, EMA weights, gradients from the chosen [`Engine`]
+//! (the hand-written pass on all cores by default), validation loss of the EMA weights on a
 //! fixed draw of the val split, a JSON-lines log, and checkpoints every few minutes, at the end
 //! and when asked to stop.
 //!
@@ -9,13 +10,14 @@
 
 use super::adamw::{AdamW, AdamWConfig};
 use super::checkpoint::{
-    CONFIG_FILE, CheckpointMeta, MODEL_FORMAT, STATE_FILE, STATE_META_FILE, TrainingInfo, WEIGHTS_FILE, at, fnv1a_hex,
+    CONFIG_FILE, CheckpointMeta, MODEL_FORMAT, STATE_FILE, STATE_META_FILE, TrainingInfo, WEIGHTS_FILE, fnv1a_hex,
     read_tensors, write_json, write_tensors,
 };
-use super::dataset::{Example, HostBatch, balance_categories, load_split};
+use super::dataset::{Example, HostBatch, NoisyBatch, balance_categories, load_split};
+use super::engine::{Engine, Gradients};
+use super::flat::ParamLayout;
 use super::{Bounds, Denoiser, Dihedral, GenError, ModelConfig, Params, Schedule};
 use crate::data::{Rng, read_stats};
-use candle_core::{Tensor, Var};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -58,6 +60,8 @@ pub struct TrainOptions {
     /// Loss weight of rare categories' slots: (median share / share)^this (`balance_categories`);
     /// 0, the default, weighs every slot alike.
     pub category_balance: f64,
+    /// Where gradients come from.
+    pub engine: Engine,
 }
 
 impl TrainOptions {
@@ -80,6 +84,7 @@ impl TrainOptions {
             resume: false,
             command: String::new(),
             category_balance: 0.0,
+            engine: Engine::Fused,
         }
     }
 
@@ -184,17 +189,19 @@ pub fn train(
     std::fs::create_dir_all(&opts.out).map_err(|e| GenError::io(&opts.out, e))?;
 
     let schedule = Schedule::linear(cfg.diffusion_steps);
-    let mut params = Params::random(opts.seed);
-    let model = Denoiser::new(cfg, &mut params)?;
-    let mut adam = AdamW::new(params.vars(), AdamWConfig::default())?;
-    let mut ema = params.snapshot()?;
+    let mut init = Params::random(opts.seed);
+    Denoiser::new(cfg, &mut init)?;
+    let (layout, mut params) = ParamLayout::of(&init.snapshot()?)?;
+    let mut engine = Gradients::new(opts.engine, cfg, &layout)?;
+    let mut adam = AdamW::new(layout.len(), AdamWConfig::default());
+    let mut ema = params.clone();
     let mut step = 0;
     let mut seconds = 0.0;
     let mut val_loss = None;
     let log_path = opts.out.join("log.jsonl");
     let mut log: Vec<LogLine> = Vec::new();
     if opts.resume {
-        let state = restore(opts, &data_hash, params.vars(), &mut adam, &mut ema)?;
+        let state = restore(opts, &data_hash, &layout, &mut params, &mut adam, &mut ema)?;
         step = state.step;
         seconds = state.seconds;
         val_loss = state.val_loss;
@@ -216,7 +223,7 @@ pub fn train(
         wall_seconds: seconds,
         val_loss,
     };
-    observer.started(step, opts.steps, train_set.len(), params.count());
+    observer.started(step, opts.steps, train_set.len(), layout.len());
 
     let started = Instant::now();
     let base_seconds = seconds;
@@ -225,22 +232,22 @@ pub fn train(
     let mut stopped = false;
     while step < opts.steps {
         let mut rng = Rng::for_item(opts.seed, step);
-        let batch = draw_batch(&train_set, opts.batch, &mut rng, cfg, true);
+        let host = draw_batch(&train_set, opts.batch, &mut rng, cfg, true);
+        let batch = NoisyBatch::draw(host, &schedule, &mut rng, cfg);
         let lr = opts.lr_at(step);
-        let loss = loss_of(&model, &schedule, &batch, &mut rng, cfg)?;
-        loss_sum += loss.to_scalar::<f32>()? as f64;
+        let (loss, grads) = engine.loss_and_grad(&params, &batch)?;
+        loss_sum += loss;
         loss_n += 1;
-        let grads = loss.backward()?;
-        adam.step(&grads, lr)?;
+        adam.step(&mut params, &grads, lr);
         let decay = opts.ema_decay.min((1.0 + step as f64) / (10.0 + step as f64));
-        update_ema(&mut ema, params.vars(), decay)?;
+        update_ema(&mut ema, &params, decay);
         step += 1;
         stopped = stop.load(Ordering::Relaxed);
         if step % opts.log_every == 0 || step == opts.steps || stopped {
             seconds = base_seconds + started.elapsed().as_secs_f64();
             let validate = step % opts.val_every == 0 || step == opts.steps;
             if validate && !val_set.is_empty() {
-                val_loss = Some(validation_loss(cfg, &ema, &schedule, &val_set, opts.seed)?);
+                val_loss = Some(validation_loss(&mut engine, cfg, &ema, &schedule, &val_set, opts.seed)?);
             }
             let line = LogLine {
                 step,
@@ -262,7 +269,7 @@ pub fn train(
                     training: info(step, seconds, val_loss),
                 };
                 let state = StateMeta { step, adam_steps: adam.steps, seconds, val_loss, data_hash: data_hash.clone() };
-                save(&opts.out, &meta, &state, params.vars(), &adam, &ema)?;
+                save(&opts.out, &meta, &state, &layout, &params, &adam, &ema)?;
                 last_checkpoint = Instant::now();
                 observer.checkpointed(step, &log)?;
             }
@@ -289,92 +296,63 @@ fn draw_batch(set: &[Example], size: usize, rng: &mut Rng, cfg: &ModelConfig, au
     batch
 }
 
-/// The weighted L_simple of one batch, with steps and noise drawn from `rng`.
-fn loss_of(
-    model: &Denoiser,
-    schedule: &Schedule,
-    batch: &HostBatch,
-    rng: &mut Rng,
-    cfg: &ModelConfig,
-) -> Result<Tensor, GenError> {
-    let per_item = cfg.slots() * cfg.token_dim();
-    let t: Vec<usize> = (0..batch.size).map(|_| rng.index(schedule.steps())).collect();
-    let noise: Vec<f32> = (0..batch.size * per_item).map(|_| rng.normal() as f32).collect();
-    let noisy: Vec<f32> = batch
-        .tokens
-        .iter()
-        .zip(&noise)
-        .enumerate()
-        .map(|(k, (&x0, &n))| {
-            let ab = schedule.alpha_bars[t[k / per_item]];
-            (ab.sqrt() as f32) * x0 + ((1.0 - ab).sqrt() as f32) * n
-        })
-        .collect();
-    let pred = model.forward(&batch.token_tensor(&noisy, cfg)?, &t, &batch.cond(cfg)?)?;
-    let weights = batch.token_tensor(&batch.weights, cfg)?;
-    let total: f32 = batch.weights.iter().sum();
-    let err = (pred - batch.token_tensor(&noise, cfg)?)?.sqr()?;
-    Ok(((err * weights)?.sum_all()? / total.max(1.0) as f64)?)
-}
-
 /// Loss of the EMA weights on the validation scenes, with fixed steps and noise.
 fn validation_loss(
+    engine: &mut Gradients,
     cfg: &ModelConfig,
-    ema: &BTreeMap<String, Tensor>,
+    ema: &[f32],
     schedule: &Schedule,
     val: &[Example],
     seed: u64,
 ) -> Result<f64, GenError> {
-    let model = Denoiser::new(cfg, &mut Params::loaded(ema.clone().into_iter().collect()))?;
     let (mut sum, mut n) = (0.0, 0.0);
     for (k, chunk) in val.chunks(64).enumerate() {
-        let mut batch = HostBatch::default();
-        chunk.iter().for_each(|e| batch.push(e));
+        let mut host = HostBatch::default();
+        chunk.iter().for_each(|e| host.push(e));
         let mut rng = Rng::for_item(seed ^ 0x5641_4c49_4441_5445, k as u64);
-        sum += loss_of(&model, schedule, &batch, &mut rng, cfg)?.to_scalar::<f32>()? as f64 * chunk.len() as f64;
+        let batch = NoisyBatch::draw(host, schedule, &mut rng, cfg);
+        sum += engine.loss(ema, &batch)? * chunk.len() as f64;
         n += chunk.len() as f64;
     }
     Ok(sum / n)
 }
 
-fn update_ema(ema: &mut BTreeMap<String, Tensor>, vars: &BTreeMap<String, Var>, decay: f64) -> Result<(), GenError> {
-    for (name, var) in vars {
-        let e = ema.get_mut(name).expect("EMA has every parameter");
-        // Detached: otherwise each EMA tensor would keep the graph of all earlier ones alive.
-        *e = ((&*e * decay)? + (var.as_tensor() * (1.0 - decay))?)?.detach();
-    }
-    Ok(())
+fn update_ema(ema: &mut [f32], params: &[f32], decay: f64) {
+    let (keep, take) = (decay as f32, (1.0 - decay) as f32);
+    ema.iter_mut().zip(params).for_each(|(e, p)| *e = *e * keep + p * take);
 }
 
 fn save(
     dir: &Path,
     meta: &CheckpointMeta,
     state: &StateMeta,
-    vars: &BTreeMap<String, Var>,
+    layout: &ParamLayout,
+    params: &[f32],
     adam: &AdamW,
-    ema: &BTreeMap<String, Tensor>,
+    ema: &[f32],
 ) -> Result<(), GenError> {
     let mut tensors = BTreeMap::new();
-    for (name, var) in vars {
-        tensors.insert(format!("param.{name}"), var.as_tensor().clone());
-        tensors.insert(format!("adam_m.{name}"), adam.m[name].clone());
-        tensors.insert(format!("adam_v.{name}"), adam.v[name].clone());
-        tensors.insert(format!("ema.{name}"), ema[name].clone());
+    for (prefix, values) in [("param", params), ("adam_m", &adam.m), ("adam_v", &adam.v), ("ema", ema)] {
+        for (name, t) in layout.tensors(values)? {
+            tensors.insert(format!("{prefix}.{name}"), t);
+        }
     }
+    let ema = layout.tensors(ema)?;
     // State first: a stop between the writes leaves a resumable folder whose weights lag by one
     // checkpoint at worst.
     write_tensors(&tensors, &dir.join(STATE_FILE))?;
     write_json(state, &dir.join(STATE_META_FILE))?;
-    write_tensors(ema, &dir.join(WEIGHTS_FILE))?;
+    write_tensors(&ema, &dir.join(WEIGHTS_FILE))?;
     write_json(meta, &dir.join(CONFIG_FILE))
 }
 
 fn restore(
     opts: &TrainOptions,
     data_hash: &str,
-    vars: &BTreeMap<String, Var>,
+    layout: &ParamLayout,
+    params: &mut Vec<f32>,
     adam: &mut AdamW,
-    ema: &mut BTreeMap<String, Tensor>,
+    ema: &mut Vec<f32>,
 ) -> Result<StateMeta, GenError> {
     let meta_path = opts.out.join(STATE_META_FILE);
     let text = std::fs::read_to_string(&meta_path).map_err(|e| GenError::io(&meta_path, e))?;
@@ -401,23 +379,20 @@ fn restore(
     let path = opts.out.join(STATE_FILE);
     let bytes = std::fs::read(&path).map_err(|e| GenError::io(&path, e))?;
     let mut tensors = read_tensors(&bytes, &path)?;
-    let mut take = |key: String, like: &Tensor| -> Result<Tensor, GenError> {
-        let t = tensors.remove(&key).ok_or_else(|| GenError::checkpoint(&path, format!("lacks tensor {key}")))?;
-        if t.dims() != like.dims() {
-            return Err(GenError::checkpoint(
-                &path,
-                format!("{key} has shape {:?}, expected {:?}", t.dims(), like.dims()),
-            ));
-        }
-        Ok(t)
+    let mut take = |prefix: &str| {
+        layout.gather(|name, shape| {
+            let key = format!("{prefix}.{name}");
+            let t = tensors.remove(&key).ok_or_else(|| GenError::checkpoint(&path, format!("lacks tensor {key}")))?;
+            if t.dims() != shape {
+                return Err(GenError::checkpoint(&path, format!("{key} has shape {:?}, expected {shape:?}", t.dims())));
+            }
+            Ok(t.flatten_all()?.to_vec1::<f32>()?)
+        })
     };
-    for (name, var) in vars {
-        let like = var.as_tensor().clone();
-        var.set(&take(format!("param.{name}"), &like)?).map_err(|e| at(e.into(), &path))?;
-        adam.m.insert(name.clone(), take(format!("adam_m.{name}"), &like)?);
-        adam.v.insert(name.clone(), take(format!("adam_v.{name}"), &like)?);
-        ema.insert(name.clone(), take(format!("ema.{name}"), &like)?);
-    }
+    *params = take("param")?;
+    adam.m = take("adam_m")?;
+    adam.v = take("adam_v")?;
+    *ema = take("ema")?;
     adam.steps = state.adam_steps;
     Ok(state)
 }
@@ -448,34 +423,6 @@ fn write_log(log: &[LogLine], path: &Path) -> Result<(), GenError> {
 mod tests {
     use super::*;
     use crate::scene::RoomType;
-
-    #[test]
-    fn optimiser_moments_and_ema_do_not_keep_graphs_alive() {
-        let cfg = ModelConfig::tiny(RoomType::Bedroom);
-        let mut params = Params::random(1);
-        let model = Denoiser::new(&cfg, &mut params).unwrap();
-        let mut adam = AdamW::new(params.vars(), AdamWConfig::default()).unwrap();
-        let mut ema = params.snapshot().unwrap();
-        let scene = crate::data::generate_room(RoomType::Bedroom, 1, 0, false).scene;
-        let mut stats = crate::data::SplitStats::default();
-        stats.add(&scene);
-        let example = Example::of(&scene, &Bounds::from_stats(&stats), &cfg);
-        let schedule = Schedule::linear(cfg.diffusion_steps);
-        let before = params.snapshot().unwrap();
-        for step in 0..2 {
-            let mut rng = Rng::for_item(0, step);
-            let batch = draw_batch(std::slice::from_ref(&example), 2, &mut rng, &cfg, true);
-            let loss = loss_of(&model, &schedule, &batch, &mut rng, &cfg).unwrap();
-            adam.step(&loss.backward().unwrap(), 1e-3).unwrap();
-            update_ema(&mut ema, params.vars(), 0.5).unwrap();
-        }
-        assert!(adam.is_detached());
-        assert!(ema.values().all(|t| !t.track_op()));
-        // And the step did change the weights (input layer always gets a gradient).
-        let after = params.snapshot().unwrap();
-        let diff = (&after["input.weight"] - &before["input.weight"]).unwrap().abs().unwrap().max_all().unwrap();
-        assert!(diff.to_scalar::<f32>().unwrap() > 0.0);
-    }
 
     #[test]
     fn learning_rate_warms_up_then_decays_to_a_tenth() {

@@ -1,0 +1,139 @@
+//! The backward pass of one chunk: from the loss through the output layer, the blocks in reverse,
+//! the tokens and the conditions, adding every parameter's gradient into a flat buffer.
+
+use super::forward::{PointTape, Tape};
+use super::ops::{self, Parts, PartsGrad};
+use super::{ChunkInputs, GradNet};
+use crate::generator::matmul::LinearAt;
+
+/// Adds the gradient of the chunk's share of the loss (divided by `total`) into `g`.
+pub(super) fn run(net: &GradNet, p: &[f32], tape: &Tape, inp: &ChunkInputs, total: f32, g: &mut [f32]) {
+    let cfg = &net.cfg;
+    let (d, b) = (cfg.d_model, inp.items);
+    let objects = b * cfg.slots();
+    let rows = tape.row_item.len();
+    let row_item = &tape.row_item;
+
+    let dout: Vec<f32> =
+        tape.out.iter().zip(inp.noise).zip(inp.weights).map(|((o, n), w)| 2.0 * w * (o - n) / total).collect();
+    let mut dfinal = vec![0f32; objects * d];
+    net.output.backward(p, g, &tape.final_m, &dout, Some(&mut dfinal));
+    let mut dmod: Vec<Vec<f32>> = tape.modulation.iter().map(|m| vec![0f32; m.len()]).collect();
+    let last = tape.modulation.len() - 1;
+    let du = ops::modulate_backward(
+        &tape.final_u,
+        Parts { values: &tape.modulation[last], parts: 2, d },
+        &mut PartsGrad { values: &mut dmod[last], parts: 2, d },
+        0,
+        &row_item[..objects],
+        &dfinal,
+    );
+    let mut dh = vec![0f32; rows * d];
+    ops::layer_norm_backward(&tape.final_u, &tape.final_rstd, &du, d, &mut dh[..objects * d]);
+
+    for ((layers, bt), (m, dm)) in
+        net.blocks.iter().zip(&tape.blocks).zip(tape.modulation.iter().zip(dmod.iter_mut())).rev()
+    {
+        let m = Parts { values: m, parts: 6, d };
+        let mut dm = PartsGrad { values: dm, parts: 6, d };
+        // h ← h + gate₂ · fc2(SiLU(fc1(modulate(LN(h)))))
+        let dmlp = ops::add_gated_backward(&dh, &bt.mlp_out, m, &mut dm, 5, row_item);
+        let mut dhidden = vec![0f32; bt.hidden.len()];
+        layers.fc2.backward(p, g, &bt.hidden, &dmlp, Some(&mut dhidden));
+        ops::silu_backward(&bt.fc1_out, &mut dhidden);
+        let mut dm2 = vec![0f32; rows * d];
+        layers.fc1.backward(p, g, &bt.m2, &dhidden, Some(&mut dm2));
+        let du2 = ops::modulate_backward(&bt.u2, m, &mut dm, 3, row_item, &dm2);
+        ops::layer_norm_backward(&bt.u2, &bt.rstd2, &du2, d, &mut dh);
+        // h ← h + gate₁ · proj(attention(qkv(modulate(LN(h)))))
+        let dattn = ops::add_gated_backward(&dh, &bt.attention_out, m, &mut dm, 2, row_item);
+        let mut dattended = vec![0f32; rows * d];
+        layers.proj.backward(p, g, &bt.attended, &dattn, Some(&mut dattended));
+        let dqkv = ops::attention_backward(&bt.qkv, &bt.probs, &tape.items, cfg.heads, d, &dattended);
+        let mut dm1 = vec![0f32; rows * d];
+        layers.qkv.backward(p, g, &bt.m1, &dqkv, Some(&mut dm1));
+        let du1 = ops::modulate_backward(&bt.u1, m, &mut dm, 0, row_item, &dm1);
+        ops::layer_norm_backward(&bt.u1, &bt.rstd1, &du1, d, &mut dh);
+    }
+
+    // Tokens: the object rows came from the input layer, the contact rows from the encoded boxes
+    // plus the learned contact-kind vector.
+    net.input.backward(p, g, inp.noisy, &dh[..objects * d], None);
+    let mut dencoded = dh[objects * d..].to_vec();
+    let kind = &mut g[net.contact_kind..net.contact_kind + d];
+    for row in dencoded.chunks_exact(d) {
+        kind.iter_mut().zip(row).for_each(|(k, v)| *k += v);
+    }
+
+    // The condition c = SiLU(time + pooled contacts + floor + free) feeds every modulation.
+    let mut dc = vec![0f32; b * d];
+    for (layers, dm) in net.blocks.iter().zip(&dmod) {
+        layers.modulation.backward(p, g, &tape.c, dm, Some(&mut dc));
+    }
+    net.final_modulation.backward(p, g, &tape.c, &dmod[last], Some(&mut dc));
+    ops::silu_backward(&tape.c_pre, &mut dc);
+
+    let mut dtime = vec![0f32; b * d];
+    net.time[1].backward(p, g, &tape.time_act, &dc, Some(&mut dtime));
+    ops::silu_backward(&tape.time_pre, &mut dtime);
+    net.time[0].backward(p, g, &tape.time_in, &dtime, None);
+
+    for ((row, &item), &w) in dencoded.chunks_exact_mut(d).zip(&tape.contact_item).zip(&tape.contact_weight) {
+        let scale = w / tape.contact_count[item];
+        row.iter_mut().zip(&dc[item * d..(item + 1) * d]).for_each(|(r, v)| *r += v * scale);
+    }
+    let mut dcontact = vec![0f32; tape.contact_act.len()];
+    net.contact[1].backward(p, g, &tape.contact_act, &dencoded, Some(&mut dcontact));
+    ops::silu_backward(&tape.contact_pre, &mut dcontact);
+    net.contact[0].backward(p, g, &tape.contact_in, &dcontact, None);
+
+    pointnet_backward(p, g, &net.floor, &tape.floor, inp.floor, &dc);
+    pointnet_backward(p, g, &net.free, &tape.free, inp.free, &dc);
+}
+
+/// A PointNet's backward pass for the gradient `dmax` (items × d) of its max over the points.
+/// Every point that attains an item's max gets the gradient (as candle's max does on ties).
+///
+/// Only those (point, feature) pairs carry a gradient, so the last layer's backward pass runs
+/// over them alone (about one in `points` of the dense product), and the first two layers' over
+/// the points that attain at least one max.
+fn pointnet_backward(p: &[f32], g: &mut [f32], layers: &[LinearAt; 3], tape: &PointTape, points: &[f32], dmax: &[f32]) {
+    let last = &layers[2];
+    let (d, width) = (last.output, last.input);
+    let items = dmax.len() / d;
+    let rows = tape.out.len() / d;
+    let per_item = rows / items.max(1);
+    let mut dh1 = vec![0f32; tape.h1.len()];
+    let mut active = vec![false; rows];
+    for item in 0..items {
+        let (max, dm) = (&tape.max[item * d..(item + 1) * d], &dmax[item * d..(item + 1) * d]);
+        for r in item * per_item..(item + 1) * per_item {
+            let values = &tape.out[r * d..(r + 1) * d];
+            for (j, ((v, m), &dv)) in values.iter().zip(max).zip(dm).enumerate() {
+                if v != m || dv == 0.0 {
+                    continue;
+                }
+                active[r] = true;
+                let h1 = &tape.h1[r * width..(r + 1) * width];
+                let w = &p[last.weight + j * width..last.weight + (j + 1) * width];
+                g[last.weight + j * width..last.weight + (j + 1) * width]
+                    .iter_mut()
+                    .zip(h1)
+                    .for_each(|(gw, h)| *gw += dv * h);
+                g[last.bias + j] += dv;
+                dh1[r * width..(r + 1) * width].iter_mut().zip(w).for_each(|(gh, w)| *gh += dv * w);
+            }
+        }
+    }
+    let keep: Vec<usize> = (0..rows).filter(|&r| active[r]).collect();
+    let gather = |values: &[f32], cols: usize| -> Vec<f32> {
+        keep.iter().flat_map(|&r| values[r * cols..(r + 1) * cols].iter().copied()).collect()
+    };
+    let (h0, h1) = (gather(&tape.h0, layers[1].input), gather(&tape.h1, width));
+    let mut dh1 = gather(&dh1, width);
+    ops::relu_backward(&h1, &mut dh1);
+    let mut dh0 = vec![0f32; h0.len()];
+    layers[1].backward(p, g, &h0, &dh1, Some(&mut dh0));
+    ops::relu_backward(&h0, &mut dh0);
+    layers[0].backward(p, g, &gather(points, layers[0].input), &dh0, None);
+}

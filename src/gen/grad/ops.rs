@@ -1,0 +1,295 @@
+//! The element-wise and per-item pieces of the training pass, forward and backward: SiLU, ReLU,
+//! parameter-free layer norm, adaLN modulation and gating with per-item vectors, and multi-head
+//! attention within each item's rows. Matrix products are in [`super::super::matmul`].
+
+/// Layer norm's ε under the square root (as the candle model).
+const NORM_EPS: f32 = 1e-6;
+
+pub(super) fn sigmoid(x: f32) -> f32 {
+    1.0 / (1.0 + (-x).exp())
+}
+
+/// SiLU of `pre` into a new vector.
+pub(super) fn silu(pre: &[f32]) -> Vec<f32> {
+    pre.iter().map(|&x| x * sigmoid(x)).collect()
+}
+
+/// `dy` · SiLU′(`pre`), in place in `dy`.
+pub(super) fn silu_backward(pre: &[f32], dy: &mut [f32]) {
+    for (g, &x) in dy.iter_mut().zip(pre) {
+        let s = sigmoid(x);
+        *g *= s * (1.0 + x * (1.0 - s));
+    }
+}
+
+/// ReLU in place.
+pub(super) fn relu(v: &mut [f32]) {
+    v.iter_mut().for_each(|x| *x = x.max(0.0));
+}
+
+/// Zeroes `dy` where the ReLU's output `out` is 0 (its input was not positive).
+pub(super) fn relu_backward(out: &[f32], dy: &mut [f32]) {
+    dy.iter_mut().zip(out).filter(|(_, o)| **o <= 0.0).for_each(|(g, _)| *g = 0.0);
+}
+
+/// Normalises each row of `x` (width `d`): `u = (x − mean) · rstd` with `rstd = 1/√(var + ε)`.
+pub(super) fn layer_norm(x: &[f32], d: usize) -> (Vec<f32>, Vec<f32>) {
+    let mut u = vec![0f32; x.len()];
+    let mut rstd = Vec::with_capacity(x.len() / d);
+    for (row, out) in x.chunks_exact(d).zip(u.chunks_exact_mut(d)) {
+        let mean = row.iter().sum::<f32>() / d as f32;
+        let var = row.iter().map(|v| (v - mean) * (v - mean)).sum::<f32>() / d as f32;
+        let r = 1.0 / (var + NORM_EPS).sqrt();
+        out.iter_mut().zip(row).for_each(|(o, v)| *o = (v - mean) * r);
+        rstd.push(r);
+    }
+    (u, rstd)
+}
+
+/// Adds the layer norm's input gradient for output gradient `du` into `dx`:
+/// `rstd · (du − mean(du) − u · mean(du · u))` per row.
+pub(super) fn layer_norm_backward(u: &[f32], rstd: &[f32], du: &[f32], d: usize, dx: &mut [f32]) {
+    for (((u, du), dx), r) in u.chunks_exact(d).zip(du.chunks_exact(d)).zip(dx.chunks_exact_mut(d)).zip(rstd) {
+        let mean_du = du.iter().sum::<f32>() / d as f32;
+        let mean_duu = du.iter().zip(u).map(|(a, b)| a * b).sum::<f32>() / d as f32;
+        for ((x, g), v) in dx.iter_mut().zip(du).zip(u) {
+            *x += r * (g - mean_du - v * mean_duu);
+        }
+    }
+}
+
+/// Per-item modulation vectors: item `i`'s part `j` (width `d`) of a `(items × parts·d)` matrix.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Parts<'a> {
+    pub(super) values: &'a [f32],
+    pub(super) parts: usize,
+    pub(super) d: usize,
+}
+
+impl<'a> Parts<'a> {
+    pub(super) fn get(&self, item: usize, part: usize) -> &'a [f32] {
+        let at = (item * self.parts + part) * self.d;
+        &self.values[at..at + self.d]
+    }
+}
+
+/// The same matrix's gradient, written part by part.
+pub(super) struct PartsGrad<'a> {
+    pub(super) values: &'a mut [f32],
+    pub(super) parts: usize,
+    pub(super) d: usize,
+}
+
+impl PartsGrad<'_> {
+    pub(super) fn get(&mut self, item: usize, part: usize) -> &mut [f32] {
+        let at = (item * self.parts + part) * self.d;
+        &mut self.values[at..at + self.d]
+    }
+}
+
+/// `u · (1 + scale) + shift` per row, with row `r`'s item `row_item[r]` choosing the vectors.
+pub(super) fn modulate(u: &[f32], m: Parts, shift: usize, row_item: &[usize]) -> Vec<f32> {
+    let d = m.d;
+    let mut out = vec![0f32; u.len()];
+    for ((row, dst), &item) in u.chunks_exact(d).zip(out.chunks_exact_mut(d)).zip(row_item) {
+        let (sh, sc) = (m.get(item, shift), m.get(item, shift + 1));
+        for (((o, v), a), b) in dst.iter_mut().zip(row).zip(sc).zip(sh) {
+            *o = v * (1.0 + a) + b;
+        }
+    }
+    out
+}
+
+/// Backward of [`modulate`]: adds the shift and scale gradients into `dm` and returns `du`.
+pub(super) fn modulate_backward(
+    u: &[f32],
+    m: Parts,
+    dm: &mut PartsGrad,
+    shift: usize,
+    row_item: &[usize],
+    dout: &[f32],
+) -> Vec<f32> {
+    let d = m.d;
+    let mut du = vec![0f32; u.len()];
+    for (((row, g), dst), &item) in
+        u.chunks_exact(d).zip(dout.chunks_exact(d)).zip(du.chunks_exact_mut(d)).zip(row_item)
+    {
+        let sc = m.get(item, shift + 1);
+        dst.iter_mut().zip(g).zip(sc).for_each(|((o, g), a)| *o = g * (1.0 + a));
+        dm.get(item, shift).iter_mut().zip(g).for_each(|(s, g)| *s += g);
+        dm.get(item, shift + 1).iter_mut().zip(g).zip(row).for_each(|((s, g), v)| *s += g * v);
+    }
+    du
+}
+
+/// `h += gate · branch` per row.
+pub(super) fn add_gated(h: &mut [f32], branch: &[f32], m: Parts, gate: usize, row_item: &[usize]) {
+    let d = m.d;
+    for ((row, add), &item) in h.chunks_exact_mut(d).zip(branch.chunks_exact(d)).zip(row_item) {
+        row.iter_mut().zip(add).zip(m.get(item, gate)).for_each(|((v, a), g)| *v += g * a);
+    }
+}
+
+/// Backward of [`add_gated`] for the branch and the gate (the residual passes `dh` on unchanged):
+/// adds the gate's gradient into `dm`, returns the branch's.
+pub(super) fn add_gated_backward(
+    dh: &[f32],
+    branch: &[f32],
+    m: Parts,
+    dm: &mut PartsGrad,
+    gate: usize,
+    row_item: &[usize],
+) -> Vec<f32> {
+    let d = m.d;
+    let mut dbranch = vec![0f32; dh.len()];
+    for (((g, b), dst), &item) in
+        dh.chunks_exact(d).zip(branch.chunks_exact(d)).zip(dbranch.chunks_exact_mut(d)).zip(row_item)
+    {
+        dst.iter_mut().zip(g).zip(m.get(item, gate)).for_each(|((o, g), w)| *o = g * w);
+        dm.get(item, gate).iter_mut().zip(g).zip(b).for_each(|((s, g), v)| *s += g * v);
+    }
+    dbranch
+}
+
+/// Multi-head self-attention among the rows of each item (`items[i]` lists item i's rows, in
+/// order). `qkv` is rows × 3d (q | k | v, heads within each); returns the output (rows × d) and
+/// each (item, head)'s softmax weights, row-major.
+pub(super) fn attention(qkv: &[f32], items: &[Vec<usize>], heads: usize, d: usize) -> (Vec<f32>, Vec<Vec<f32>>) {
+    let dh = d / heads;
+    let scale = 1.0 / (dh as f32).sqrt();
+    let mut out = vec![0f32; qkv.len() / 3];
+    let mut probs = Vec::with_capacity(items.len() * heads);
+    for rows in items {
+        let n = rows.len();
+        for head in 0..heads {
+            let col = |row: usize, part: usize| &qkv[row * 3 * d + part * d + head * dh..][..dh];
+            let mut p = vec![0f32; n * n];
+            for (i, &ri) in rows.iter().enumerate() {
+                let q = col(ri, 0);
+                let weights = &mut p[i * n..(i + 1) * n];
+                let mut max = f32::NEG_INFINITY;
+                for (w, &rj) in weights.iter_mut().zip(rows) {
+                    *w = q.iter().zip(col(rj, 1)).map(|(a, b)| a * b).sum::<f32>() * scale;
+                    max = max.max(*w);
+                }
+                let mut total = 0.0;
+                for w in weights.iter_mut() {
+                    *w = (*w - max).exp();
+                    total += *w;
+                }
+                weights.iter_mut().for_each(|w| *w /= total);
+                let dst = &mut out[ri * d + head * dh..][..dh];
+                for (w, &rj) in weights.iter().zip(rows) {
+                    dst.iter_mut().zip(col(rj, 2)).for_each(|(o, v)| *o += w * v);
+                }
+            }
+            probs.push(p);
+        }
+    }
+    (out, probs)
+}
+
+/// Backward of [`attention`]: the gradient of `qkv` for the output gradient `dout`.
+pub(super) fn attention_backward(
+    qkv: &[f32],
+    probs: &[Vec<f32>],
+    items: &[Vec<usize>],
+    heads: usize,
+    d: usize,
+    dout: &[f32],
+) -> Vec<f32> {
+    let dh = d / heads;
+    let scale = 1.0 / (dh as f32).sqrt();
+    let mut dqkv = vec![0f32; qkv.len()];
+    let mut dp = Vec::new();
+    for (item, rows) in items.iter().enumerate() {
+        let n = rows.len();
+        for head in 0..heads {
+            let at = |row: usize, part: usize| row * 3 * d + part * d + head * dh;
+            let p = &probs[item * heads + head];
+            for (i, &ri) in rows.iter().enumerate() {
+                let dout_i = &dout[ri * d + head * dh..][..dh];
+                let pi = &p[i * n..(i + 1) * n];
+                // dP_ij = dout_i · v_j ; dv_j += P_ij dout_i.
+                dp.clear();
+                for (&w, &rj) in pi.iter().zip(rows) {
+                    let v = &qkv[at(rj, 2)..][..dh];
+                    dp.push(dout_i.iter().zip(v).map(|(a, b)| a * b).sum::<f32>());
+                    dqkv[at(rj, 2)..][..dh].iter_mut().zip(dout_i).for_each(|(g, o)| *g += w * o);
+                }
+                // dS_ij = P_ij (dP_ij − Σ_k P_ik dP_ik), then through S = q·k · scale.
+                let inner: f32 = pi.iter().zip(&dp).map(|(a, b)| a * b).sum();
+                for ((&w, &g), &rj) in pi.iter().zip(&dp).zip(rows) {
+                    let ds = w * (g - inner) * scale;
+                    if ds == 0.0 {
+                        continue;
+                    }
+                    for c in 0..dh {
+                        let (q, k) = (qkv[at(ri, 0) + c], qkv[at(rj, 1) + c]);
+                        dqkv[at(ri, 0) + c] += ds * k;
+                        dqkv[at(rj, 1) + c] += ds * q;
+                    }
+                }
+            }
+        }
+    }
+    dqkv
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn loss(values: &[f32], r: &[f32]) -> f64 {
+        values.iter().zip(r).map(|(a, b)| (a * b) as f64).sum()
+    }
+
+    fn numeric(f: impl Fn(&[f32]) -> f64, x: &[f32], i: usize) -> f64 {
+        let (mut up, mut down) = (x.to_vec(), x.to_vec());
+        up[i] += 1e-2;
+        down[i] -= 1e-2;
+        (f(&up) - f(&down)) / 2e-2
+    }
+
+    #[test]
+    fn layer_norm_and_its_backward_match_finite_differences() {
+        let x = [0.3, -1.2, 2.0, 0.7, 1.0, 1.5, -0.5, 0.0];
+        let r = [1.0, 0.5, -2.0, 0.25, -1.0, 2.0, 0.5, 1.5];
+        let (u, rstd) = layer_norm(&x, 4);
+        assert!(u[..4].iter().sum::<f32>().abs() < 1e-5);
+        let mut dx = vec![0.0; 8];
+        layer_norm_backward(&u, &rstd, &r, 4, &mut dx);
+        for (i, g) in dx.iter().enumerate() {
+            let n = numeric(|x| loss(&layer_norm(x, 4).0, &r), &x, i);
+            assert!((n - *g as f64).abs() < 2e-3, "{i}: {n} vs {g}");
+        }
+    }
+
+    #[test]
+    fn attention_backward_matches_finite_differences() {
+        // Two items (3 rows and 2 rows, the second's rows not contiguous), d 4, 2 heads.
+        let items = vec![vec![0, 1, 4], vec![2, 3]];
+        let qkv: Vec<f32> = (0..5 * 12).map(|i| ((i * 37 % 23) as f32 / 11.0) - 1.0).collect();
+        let r: Vec<f32> = (0..5 * 4).map(|i| ((i * 13 % 7) as f32 / 3.0) - 1.0).collect();
+        let (_, probs) = attention(&qkv, &items, 2, 4);
+        assert!(
+            probs.iter().all(|p| p.chunks(p.len().isqrt()).all(|row| (row.iter().sum::<f32>() - 1.0).abs() < 1e-6))
+        );
+        let grad = attention_backward(&qkv, &probs, &items, 2, 4, &r);
+        for (i, g) in grad.iter().enumerate() {
+            let n = numeric(|q| loss(&attention(q, &items, 2, 4).0, &r), &qkv, i);
+            assert!((n - *g as f64).abs() < 2e-3, "{i}: {n} vs {g}");
+        }
+    }
+
+    #[test]
+    fn silu_backward_matches_finite_differences() {
+        let x = [-3.0, -0.5, 0.0, 0.8, 4.0];
+        let mut g = [1.0; 5];
+        silu_backward(&x, &mut g);
+        for (i, g) in g.iter().enumerate() {
+            let n = numeric(|x| silu(x).iter().map(|v| *v as f64).sum(), &x, i);
+            assert!((n - *g as f64).abs() < 1e-3, "{i}");
+        }
+    }
+}

@@ -1,0 +1,84 @@
+use super::*;
+use crate::data::{Rng, generate_room};
+use crate::generator::shipped::shipped_weights;
+use crate::generator::{Engine, Example, Gradients, HostBatch, Params, Schedule, shipped_model};
+use crate::scene::RoomType;
+use std::collections::BTreeMap;
+
+/// A batch of `n` real examples of `room` with every corner case in it: items with 0 contact boxes
+/// and with the most, a free-space mask with nobody walking (every point the same: ties in the
+/// PointNet's max), steps from 0 to T − 1.
+fn batch(room: RoomType, cfg: &ModelConfig, bounds: &crate::generator::Bounds, n: usize) -> NoisyBatch {
+    let mut host = HostBatch::default();
+    for seed in 0..n as u64 {
+        let scene = generate_room(room, 11, seed, false).scene;
+        let mut e = Example::of(&scene, bounds, cfg);
+        if seed == 1 {
+            e.features.contact_mask.fill(0.0);
+            e.features.contacts.fill(0.0);
+        }
+        if seed == 2 {
+            e.features.contact_mask.fill(1.0);
+        }
+        if seed == 3 {
+            e.features.free.chunks_exact_mut(3).for_each(|p| p.copy_from_slice(&[0.0, 0.0, 0.0]));
+        }
+        host.push(&e);
+    }
+    let mut b = NoisyBatch::draw(host, &Schedule::linear(cfg.diffusion_steps), &mut Rng::new(5), cfg);
+    (b.t[0], b.t[n - 1]) = (0, cfg.diffusion_steps - 1);
+    b
+}
+
+/// Worst |fused − candle| of each tensor over that tensor's largest |candle| value.
+fn compare(
+    layout: &ParamLayout,
+    params: &[f32],
+    batch: &NoisyBatch,
+    cfg: &ModelConfig,
+) -> BTreeMap<String, (f32, f32)> {
+    let net = GradNet::new(cfg, layout).unwrap();
+    let (loss, fused) = net.loss_and_grad(params, batch);
+    let mut candle = Gradients::new(Engine::Candle, cfg, layout).unwrap();
+    let (want_loss, want) = candle.loss_and_grad(params, batch).unwrap();
+    assert!((loss - want_loss).abs() < 1e-5 * want_loss.max(1e-3), "loss {loss} vs {want_loss}");
+    assert!((net.loss(params, batch) - loss).abs() < 1e-9, "loss alone");
+    layout
+        .ranges()
+        .map(|(name, range)| {
+            let scale = want[range.clone()].iter().fold(0f32, |m, v| m.max(v.abs()));
+            let worst = want[range.clone()].iter().zip(&fused[range]).fold(0f32, |m, (a, b)| m.max((a - b).abs()));
+            (name.to_string(), (worst, scale))
+        })
+        .collect()
+}
+
+#[test]
+fn gradients_equal_candles_on_a_trained_model() {
+    for room in [RoomType::Bedroom, RoomType::Living] {
+        let checkpoint = shipped_model(room).unwrap();
+        let cfg = &checkpoint.meta.model;
+        let (layout, params) = ParamLayout::of(&shipped_weights(room)).unwrap();
+        let b = batch(room, cfg, &checkpoint.meta.bounds, 11);
+        for (name, (worst, scale)) in compare(&layout, &params, &b, cfg) {
+            assert!(scale > 0.0, "{room} {name}: no gradient");
+            assert!(worst <= 1e-4 * scale, "{room} {name}: worst {worst:e} of {scale:e}");
+        }
+    }
+}
+
+#[test]
+fn gradients_equal_candles_at_initialisation() {
+    // adaLN-Zero: only the final layers get a gradient at the very start; both engines agree.
+    let cfg = ModelConfig::tiny(RoomType::Dining);
+    let mut init = Params::random(3);
+    crate::generator::Denoiser::new(&cfg, &mut init).unwrap();
+    let (layout, params) = ParamLayout::of(&init.snapshot().unwrap()).unwrap();
+    let checkpoint = shipped_model(RoomType::Dining).unwrap();
+    let b = batch(RoomType::Dining, &cfg, &checkpoint.meta.bounds, 5);
+    let grads = compare(&layout, &params, &b, &cfg);
+    for (name, (worst, scale)) in &grads {
+        assert!(*worst <= 1e-4 * scale.max(1e-6), "{name}: worst {worst:e} of {scale:e}");
+    }
+    assert!(grads["final.output.weight"].1 > 0.0 && grads["blocks.0.qkv.weight"].1 == 0.0);
+}
