@@ -103,12 +103,10 @@ impl CandleGradients {
     fn loss_and_grad(&mut self, params: &[f32], batch: &NoisyBatch) -> Result<(f64, Vec<f32>), GenError> {
         let loss = self.loss_tensor(params, batch)?;
         let grads = loss.backward()?;
-        let mut flat = vec![0f32; self.layout.len()];
-        for (name, range) in self.layout.ranges() {
-            if let Some(g) = grads.get(self.vars[name].as_tensor()) {
-                flat[range].copy_from_slice(&g.flatten_all()?.to_vec1::<f32>()?);
-            }
-        }
+        let flat = self.layout.gather(|name, shape| match grads.get(self.vars[name].as_tensor()) {
+            Some(g) => Ok(g.flatten_all()?.to_vec1::<f32>()?),
+            None => Ok(vec![0f32; shape.iter().product()]),
+        })?;
         Ok((loss.to_scalar::<f32>()? as f64, flat))
     }
 }

@@ -2,6 +2,12 @@
 //! lies (in name order), so parameters, gradients, optimiser moments and EMA weights are plain
 //! vectors of the same length, and checkpoints keep their named tensors.
 //!
+//! Matrices (the linear layers' weights, `output × input` in checkpoints and candle) are stored
+//! transposed, `input × output` row-major, as the forward pass reads them: a product with a
+//! row-major right-hand side computes every output row alike whatever the number of rows (through
+//! a transposed view it does not, for one or two rows), so an item's numbers never depend on the
+//! rows stacked with it. Conversions happen only here, when tensors come in or go out.
+//!
 //! It does not know what the tensors mean; [`super::grad::GradNet`] finds its layers by name.
 
 use super::GenError;
@@ -31,7 +37,7 @@ impl ParamLayout {
         let mut values = Vec::new();
         for (name, t) in tensors {
             entries.push(Entry { name: name.clone(), shape: t.dims().to_vec(), offset: values.len() });
-            values.extend(t.to_dtype(DType::F32)?.flatten_all()?.to_vec1::<f32>()?);
+            values.extend(stored(t.dims(), &t.to_dtype(DType::F32)?.flatten_all()?.to_vec1::<f32>()?));
         }
         Ok((ParamLayout { entries, len: values.len() }, values))
     }
@@ -46,7 +52,7 @@ impl ParamLayout {
         self.len == 0
     }
 
-    /// Where `name` lies and its shape.
+    /// Where `name` lies and its shape (as in checkpoints: a matrix lies transposed).
     pub fn find(&self, name: &str) -> Option<(Range<usize>, &[usize])> {
         let e = self.entries.iter().find(|e| e.name == name)?;
         let n: usize = e.shape.iter().product();
@@ -65,24 +71,53 @@ impl ParamLayout {
             .iter()
             .map(|e| {
                 let n: usize = e.shape.iter().product();
-                let t = Tensor::from_slice(&values[e.offset..e.offset + n], e.shape.as_slice(), &Device::Cpu)?;
-                Ok((e.name.clone(), t))
+                let plain = unstored(&e.shape, &values[e.offset..e.offset + n]);
+                Ok((e.name.clone(), Tensor::from_vec(plain, e.shape.as_slice(), &Device::Cpu)?))
             })
             .collect()
     }
 
-    /// Named tensors laid out by this layout; `take(name, shape)` gives each one's values or the
-    /// error (a missing tensor, a wrong shape) to report.
+    /// Named tensors laid out by this layout; `take(name, shape)` gives each one's values
+    /// (row-major, as in checkpoints) or the error (a missing tensor, a wrong shape) to report.
     pub fn gather(
         &self,
         mut take: impl FnMut(&str, &[usize]) -> Result<Vec<f32>, GenError>,
     ) -> Result<Vec<f32>, GenError> {
         let mut values = Vec::with_capacity(self.len);
         for e in &self.entries {
-            values.extend(take(&e.name, &e.shape)?);
+            let plain = take(&e.name, &e.shape)?;
+            assert_eq!(plain.len(), e.shape.iter().product::<usize>(), "values of {}", e.name);
+            values.extend(stored(&e.shape, &plain));
         }
         Ok(values)
     }
+}
+
+/// A tensor's row-major values as stored: a matrix transposed, anything else as it is.
+fn stored(shape: &[usize], values: &[f32]) -> Vec<f32> {
+    match *shape {
+        [rows, cols] => transpose(values, rows, cols),
+        _ => values.to_vec(),
+    }
+}
+
+/// The inverse of [`stored`].
+fn unstored(shape: &[usize], values: &[f32]) -> Vec<f32> {
+    match *shape {
+        [rows, cols] => transpose(values, cols, rows),
+        _ => values.to_vec(),
+    }
+}
+
+/// `values` (rows × cols, row-major) transposed.
+fn transpose(values: &[f32], rows: usize, cols: usize) -> Vec<f32> {
+    let mut out = vec![0f32; values.len()];
+    for r in 0..rows {
+        for c in 0..cols {
+            out[c * rows + r] = values[r * cols + c];
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -95,7 +130,8 @@ mod tests {
         map.insert("b".to_string(), Tensor::new(&[[1f32, 2.0], [3.0, 4.0]], &Device::Cpu).unwrap());
         map.insert("a".to_string(), Tensor::new(&[5f32, 6.0, 7.0], &Device::Cpu).unwrap());
         let (layout, values) = ParamLayout::of(&map).unwrap();
-        assert_eq!(values, [5.0, 6.0, 7.0, 1.0, 2.0, 3.0, 4.0]);
+        // The matrix lies transposed.
+        assert_eq!(values, [5.0, 6.0, 7.0, 1.0, 3.0, 2.0, 4.0]);
         assert_eq!(layout.find("b").unwrap(), (3..7, &[2usize, 2][..]));
         let back = layout.tensors(&values).unwrap();
         assert_eq!(back["b"].to_vec2::<f32>().unwrap(), [[1.0, 2.0], [3.0, 4.0]]);

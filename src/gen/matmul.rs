@@ -80,7 +80,8 @@ pub(crate) fn matmul(c: &mut [f32], accumulate: bool, a: Mat, b: Mat) {
     }
 }
 
-/// Where a linear layer's weight (`output × input`) and bias (`output`) lie in a flat vector.
+/// Where a linear layer's weight and bias (`output`) lie in a flat vector; the weight is stored
+/// transposed, `input × output` row-major (see [`super::flat`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct LinearAt {
     pub(crate) weight: usize,
@@ -90,19 +91,22 @@ pub(crate) struct LinearAt {
 }
 
 impl LinearAt {
-    fn weight<'a>(&self, params: &'a [f32]) -> Mat<'a> {
-        Mat::rows(&params[self.weight..self.weight + self.input * self.output], self.output, self.input)
+    /// Wᵀ (input × output).
+    fn weight_t<'a>(&self, params: &'a [f32]) -> Mat<'a> {
+        Mat::rows(&params[self.weight..self.weight + self.input * self.output], self.input, self.output)
     }
 
     /// `y` (rows × output) = `x` (rows × input) Wᵀ + b.
     pub(crate) fn forward(&self, params: &[f32], x: &[f32], y: &mut [f32]) {
         let rows = x.len() / self.input;
         assert_eq!(x.len(), rows * self.input, "input width");
+        // The product first, then the bias: gemm adds into an existing output differently for one
+        // row than for several, and an item's numbers must not depend on the rows beside it.
+        matmul(y, false, Mat::rows(x, rows, self.input), self.weight_t(params));
         let bias = &params[self.bias..self.bias + self.output];
         for row in y.chunks_exact_mut(self.output) {
-            row.copy_from_slice(bias);
+            row.iter_mut().zip(bias).for_each(|(v, b)| *v += b);
         }
-        matmul(y, true, Mat::rows(x, rows, self.input), self.weight(params).t());
     }
 
     /// [`forward`](Self::forward) into a new vector.
@@ -119,13 +123,13 @@ impl LinearAt {
         assert_eq!(x.len(), rows * self.input, "input of the forward pass");
         let dy_mat = Mat::rows(dy, rows, self.output);
         let dw = &mut grads[self.weight..self.weight + self.input * self.output];
-        matmul(dw, true, dy_mat.t(), Mat::rows(x, rows, self.input));
+        matmul(dw, true, Mat::rows(x, rows, self.input).t(), dy_mat);
         let db = &mut grads[self.bias..self.bias + self.output];
         for row in dy.chunks_exact(self.output) {
             db.iter_mut().zip(row).for_each(|(g, v)| *g += v);
         }
         if let Some(dx) = dx {
-            matmul(dx, true, dy_mat, self.weight(params));
+            matmul(dx, true, dy_mat, self.weight_t(params).t());
         }
     }
 }

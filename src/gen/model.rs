@@ -13,6 +13,7 @@ use super::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES, TIME_FEATUR
 use super::params::{Init, Linear, Params, layer_norm};
 use super::{GenError, ModelConfig};
 use candle_core::{D, Device, Tensor};
+use std::collections::BTreeMap;
 
 /// The conditioning of a batch, as tensors.
 #[derive(Debug, Clone)]
@@ -124,6 +125,8 @@ pub struct Denoiser {
     pub(super) blocks: Vec<Block>,
     pub(super) final_modulation: Linear,
     pub(super) output: Linear,
+    /// Every parameter by name (the checkpoint's names).
+    pub(super) named: BTreeMap<String, Tensor>,
 }
 
 impl Denoiser {
@@ -145,8 +148,10 @@ impl Denoiser {
             blocks: (0..cfg.blocks).map(|i| Block::new(p, &format!("blocks.{i}"), cfg)).collect::<Result<_, _>>()?,
             final_modulation: p.linear("final.modulation", d, 2 * d, true)?,
             output: p.linear("final.output", d, cfg.token_dim(), true)?,
+            named: BTreeMap::new(),
         };
         p.finish()?;
+        let model = Denoiser { named: p.tensors(), ..model };
         Ok(model)
     }
 

@@ -108,6 +108,12 @@ impl Params {
             + self.frozen.values().map(|t| t.elem_count()).sum::<usize>()
     }
 
+    /// The parameters by name (sharing storage with trainable ones: they follow updates).
+    pub fn tensors(&self) -> BTreeMap<String, Tensor> {
+        let vars = self.vars.iter().map(|(k, v)| (k.clone(), v.as_tensor().clone()));
+        vars.chain(self.frozen.iter().map(|(k, t)| (k.clone(), t.clone()))).collect()
+    }
+
     /// Copies of the current values by name (for EMA and saving).
     pub fn snapshot(&self) -> Result<BTreeMap<String, Tensor>, GenError> {
         let vars = self.vars.iter().map(|(k, v)| Ok((k.clone(), v.as_tensor().copy()?)));
@@ -142,12 +148,6 @@ impl Linear {
         let mut out = dims;
         *out.last_mut().expect("non-empty") = self.weight.dim(0)?;
         Ok(y.reshape(out)?)
-    }
-
-    /// The weight (output × input, row-major) and bias as host vectors, with (output, input).
-    pub(super) fn host(&self) -> Result<(Vec<f32>, Vec<f32>, usize, usize), GenError> {
-        let (output, input) = self.weight.dims2()?;
-        Ok((self.weight.flatten_all()?.to_vec1()?, self.bias.flatten_all()?.to_vec1()?, output, input))
     }
 }
 

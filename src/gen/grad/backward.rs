@@ -9,30 +9,31 @@ use crate::generator::matmul::LinearAt;
 /// Adds the gradient of the chunk's share of the loss (divided by `total`) into `g`.
 pub(super) fn run(net: &GradNet, p: &[f32], tape: &Tape, inp: &ChunkInputs, total: f32, g: &mut [f32]) {
     let cfg = &net.cfg;
-    let (d, b) = (cfg.d_model, inp.items);
+    let (d, b) = (cfg.d_model, inp.cond.items);
     let objects = b * cfg.slots();
-    let rows = tape.row_item.len();
-    let row_item = &tape.row_item;
+    let (cond, step) = (&tape.cond, &tape.step);
+    let rows = cond.row_item.len();
+    let row_item = &cond.row_item;
 
     let dout: Vec<f32> =
-        tape.out.iter().zip(inp.noise).zip(inp.weights).map(|((o, n), w)| 2.0 * w * (o - n) / total).collect();
+        step.out.iter().zip(inp.noise).zip(inp.weights).map(|((o, n), w)| 2.0 * w * (o - n) / total).collect();
     let mut dfinal = vec![0f32; objects * d];
-    net.output.backward(p, g, &tape.final_m, &dout, Some(&mut dfinal));
-    let mut dmod: Vec<Vec<f32>> = tape.modulation.iter().map(|m| vec![0f32; m.len()]).collect();
-    let last = tape.modulation.len() - 1;
+    net.output.backward(p, g, &step.final_m, &dout, Some(&mut dfinal));
+    let mut dmod: Vec<Vec<f32>> = step.modulation.iter().map(|m| vec![0f32; m.len()]).collect();
+    let last = step.modulation.len() - 1;
     let du = ops::modulate_backward(
-        &tape.final_u,
-        Parts { values: &tape.modulation[last], parts: 2, d },
+        &step.final_u,
+        Parts { values: &step.modulation[last], parts: 2, d },
         &mut PartsGrad { values: &mut dmod[last], parts: 2, d },
         0,
         &row_item[..objects],
         &dfinal,
     );
     let mut dh = vec![0f32; rows * d];
-    ops::layer_norm_backward(&tape.final_u, &tape.final_rstd, &du, d, &mut dh[..objects * d]);
+    ops::layer_norm_backward(&step.final_u, &step.final_rstd, &du, d, &mut dh[..objects * d]);
 
     for ((layers, bt), (m, dm)) in
-        net.blocks.iter().zip(&tape.blocks).zip(tape.modulation.iter().zip(dmod.iter_mut())).rev()
+        net.blocks.iter().zip(&step.blocks).zip(step.modulation.iter().zip(dmod.iter_mut())).rev()
     {
         let m = Parts { values: m, parts: 6, d };
         let mut dm = PartsGrad { values: dm, parts: 6, d };
@@ -49,7 +50,7 @@ pub(super) fn run(net: &GradNet, p: &[f32], tape: &Tape, inp: &ChunkInputs, tota
         let dattn = ops::add_gated_backward(&dh, &bt.attention_out, m, &mut dm, 2, row_item);
         let mut dattended = vec![0f32; rows * d];
         layers.proj.backward(p, g, &bt.attended, &dattn, Some(&mut dattended));
-        let dqkv = ops::attention_backward(&bt.qkv, &bt.probs, &tape.items, cfg.heads, d, &dattended);
+        let dqkv = ops::attention_backward(&bt.qkv, &bt.probs, &cond.items, cfg.heads, d, &dattended);
         let mut dm1 = vec![0f32; rows * d];
         layers.qkv.backward(p, g, &bt.m1, &dqkv, Some(&mut dm1));
         let du1 = ops::modulate_backward(&bt.u1, m, &mut dm, 0, row_item, &dm1);
@@ -68,27 +69,27 @@ pub(super) fn run(net: &GradNet, p: &[f32], tape: &Tape, inp: &ChunkInputs, tota
     // The condition c = SiLU(time + pooled contacts + floor + free) feeds every modulation.
     let mut dc = vec![0f32; b * d];
     for (layers, dm) in net.blocks.iter().zip(&dmod) {
-        layers.modulation.backward(p, g, &tape.c, dm, Some(&mut dc));
+        layers.modulation.backward(p, g, &step.c, dm, Some(&mut dc));
     }
-    net.final_modulation.backward(p, g, &tape.c, &dmod[last], Some(&mut dc));
-    ops::silu_backward(&tape.c_pre, &mut dc);
+    net.final_modulation.backward(p, g, &step.c, &dmod[last], Some(&mut dc));
+    ops::silu_backward(&step.c_pre, &mut dc);
 
     let mut dtime = vec![0f32; b * d];
-    net.time[1].backward(p, g, &tape.time_act, &dc, Some(&mut dtime));
-    ops::silu_backward(&tape.time_pre, &mut dtime);
-    net.time[0].backward(p, g, &tape.time_in, &dtime, None);
+    net.time[1].backward(p, g, &step.time_act, &dc, Some(&mut dtime));
+    ops::silu_backward(&step.time_pre, &mut dtime);
+    net.time[0].backward(p, g, &step.time_in, &dtime, None);
 
-    for ((row, &item), &w) in dencoded.chunks_exact_mut(d).zip(&tape.contact_item).zip(&tape.contact_weight) {
-        let scale = w / tape.contact_count[item];
+    for ((row, &item), &w) in dencoded.chunks_exact_mut(d).zip(&cond.contact_item).zip(&cond.contact_weight) {
+        let scale = w / cond.contact_count[item];
         row.iter_mut().zip(&dc[item * d..(item + 1) * d]).for_each(|(r, v)| *r += v * scale);
     }
-    let mut dcontact = vec![0f32; tape.contact_act.len()];
-    net.contact[1].backward(p, g, &tape.contact_act, &dencoded, Some(&mut dcontact));
-    ops::silu_backward(&tape.contact_pre, &mut dcontact);
-    net.contact[0].backward(p, g, &tape.contact_in, &dcontact, None);
+    let mut dcontact = vec![0f32; cond.contact_act.len()];
+    net.contact[1].backward(p, g, &cond.contact_act, &dencoded, Some(&mut dcontact));
+    ops::silu_backward(&cond.contact_pre, &mut dcontact);
+    net.contact[0].backward(p, g, &cond.contact_in, &dcontact, None);
 
-    pointnet_backward(p, g, &net.floor, &tape.floor, inp.floor, &dc);
-    pointnet_backward(p, g, &net.free, &tape.free, inp.free, &dc);
+    pointnet_backward(p, g, &net.floor, &cond.floor, inp.cond.floor, &dc);
+    pointnet_backward(p, g, &net.free, &cond.free, inp.cond.free, &dc);
 }
 
 /// A PointNet's backward pass for the gradient `dmax` (items × d) of its max over the points.
@@ -105,23 +106,36 @@ fn pointnet_backward(p: &[f32], g: &mut [f32], layers: &[LinearAt; 3], tape: &Po
     let per_item = rows / items.max(1);
     let mut dh1 = vec![0f32; tape.h1.len()];
     let mut active = vec![false; rows];
+    let mut entries: Vec<(usize, f32)> = Vec::with_capacity(d);
     for item in 0..items {
         let (max, dm) = (&tape.max[item * d..(item + 1) * d], &dmax[item * d..(item + 1) * d]);
         for r in item * per_item..(item + 1) * per_item {
             let values = &tape.out[r * d..(r + 1) * d];
-            for (j, ((v, m), &dv)) in values.iter().zip(max).zip(dm).enumerate() {
-                if v != m || dv == 0.0 {
-                    continue;
+            entries.clear();
+            entries.extend(
+                values
+                    .iter()
+                    .zip(max)
+                    .zip(dm)
+                    .enumerate()
+                    .filter(|(_, ((v, m), dv))| v == m && **dv != 0.0)
+                    .map(|(j, (_, dv))| (j, *dv)),
+            );
+            if entries.is_empty() {
+                continue;
+            }
+            active[r] = true;
+            // Wᵀ is stored input-major: row i holds every output's weight of input i.
+            let h1 = &tape.h1[r * width..(r + 1) * width];
+            for (i, (&h, dh)) in h1.iter().zip(&mut dh1[r * width..(r + 1) * width]).enumerate() {
+                let at = last.weight + i * d;
+                for &(j, dv) in &entries {
+                    g[at + j] += dv * h;
+                    *dh += dv * p[at + j];
                 }
-                active[r] = true;
-                let h1 = &tape.h1[r * width..(r + 1) * width];
-                let w = &p[last.weight + j * width..last.weight + (j + 1) * width];
-                g[last.weight + j * width..last.weight + (j + 1) * width]
-                    .iter_mut()
-                    .zip(h1)
-                    .for_each(|(gw, h)| *gw += dv * h);
+            }
+            for &(j, dv) in &entries {
                 g[last.bias + j] += dv;
-                dh1[r * width..(r + 1) * width].iter_mut().zip(w).for_each(|(gh, w)| *gh += dv * w);
             }
         }
     }

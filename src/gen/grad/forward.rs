@@ -1,11 +1,16 @@
 //! The forward pass of one chunk of a batch, keeping what the backward pass reads.
 //!
+//! Two parts: [`ConditionTape`] encodes the conditions (contact boxes, PointNets), which stay the
+//! same over a sampling run's steps; [`StepTape`] is one step's pass through the time embedding,
+//! the modulations, the blocks and the output layer. Training keeps both for the backward pass;
+//! sampling encodes once and runs a `StepTape` per step.
+//!
 //! Rows: the chunk's object tokens first (item by item, `slots` each), then its visible contact
 //! tokens (item by item); `items[i]` lists item i's rows in the candle model's order (objects, then
 //! contacts), and `row_item[r]` is the item of row r.
 
 use super::ops::{self, Parts};
-use super::{ChunkInputs, GradNet};
+use super::{ChunkInputs, ConditionInputs, GradNet};
 use crate::generator::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES};
 use crate::generator::matmul::LinearAt;
 use crate::generator::model::time_feature_values;
@@ -20,12 +25,12 @@ pub(super) struct PointTape {
 }
 
 impl PointTape {
-    fn run(params: &[f32], layers: &[LinearAt; 3], points: &[f32], items: usize) -> PointTape {
-        let mut h0 = layers[0].map(params, points);
+    fn run(p: &[f32], layers: &[LinearAt; 3], points: &[f32], items: usize) -> PointTape {
+        let mut h0 = layers[0].map(p, points);
         ops::relu(&mut h0);
-        let mut h1 = layers[1].map(params, &h0);
+        let mut h1 = layers[1].map(p, &h0);
         ops::relu(&mut h1);
-        let out = layers[2].map(params, &h1);
+        let out = layers[2].map(p, &h1);
         let d = layers[2].output;
         let per_item = out.len() / items.max(1);
         let mut max = vec![f32::NEG_INFINITY; items * d];
@@ -56,13 +61,10 @@ pub(super) struct BlockTape {
     pub(super) mlp_out: Vec<f32>,
 }
 
-/// Everything the forward pass of a chunk computed that its backward pass needs.
-pub(super) struct Tape {
+/// A chunk's conditions, encoded: everything that does not change between diffusion steps.
+pub(crate) struct ConditionTape {
     pub(super) items: Vec<Vec<usize>>,
     pub(super) row_item: Vec<usize>,
-    pub(super) time_in: Vec<f32>,
-    pub(super) time_pre: Vec<f32>,
-    pub(super) time_act: Vec<f32>,
     /// Visible contact boxes: features, owning item, mask weight.
     pub(super) contact_in: Vec<f32>,
     pub(super) contact_item: Vec<usize>,
@@ -71,35 +73,22 @@ pub(super) struct Tape {
     pub(super) contact_count: Vec<f32>,
     pub(super) contact_pre: Vec<f32>,
     pub(super) contact_act: Vec<f32>,
+    /// The visible boxes' tokens: encoding + the contact-kind vector.
+    pub(super) contact_tokens: Vec<f32>,
+    pub(super) pooled: Vec<f32>,
     pub(super) floor: PointTape,
     pub(super) free: PointTape,
-    pub(super) c_pre: Vec<f32>,
-    pub(super) c: Vec<f32>,
-    /// Per block (items × 6d), then the final layer's (items × 2d).
-    pub(super) modulation: Vec<Vec<f32>>,
-    pub(super) blocks: Vec<BlockTape>,
-    pub(super) final_u: Vec<f32>,
-    pub(super) final_rstd: Vec<f32>,
-    pub(super) final_m: Vec<f32>,
-    pub(super) out: Vec<f32>,
 }
 
-impl Tape {
-    pub(super) fn run(net: &GradNet, p: &[f32], inp: &ChunkInputs) -> Tape {
+impl ConditionTape {
+    pub(super) fn run(net: &GradNet, p: &[f32], inp: &ConditionInputs) -> ConditionTape {
         let cfg = &net.cfg;
         let (d, slots, b) = (cfg.d_model, cfg.slots(), inp.items);
-
-        let time_in = time_feature_values(inp.t);
-        let time_pre = net.time[0].map(p, &time_in);
-        let time_act = ops::silu(&time_pre);
-        let time = net.time[1].map(p, &time_act);
-
         let (mut contact_in, mut contact_item, mut contact_weight) = (Vec::new(), Vec::new(), Vec::new());
         for (k, (features, &w)) in inp.contacts.chunks_exact(CONTACT_FEATURES).zip(inp.mask).enumerate() {
-            let item = k / cfg.max_contacts;
             if w != 0.0 {
                 contact_in.extend_from_slice(features);
-                contact_item.push(item);
+                contact_item.push(k / cfg.max_contacts);
                 contact_weight.push(w);
             }
         }
@@ -108,55 +97,102 @@ impl Tape {
             inp.mask.chunks_exact(cfg.max_contacts).map(|m| m.iter().sum::<f32>() + 1e-6).collect();
         let contact_pre = net.contact[0].map(p, &contact_in);
         let contact_act = ops::silu(&contact_pre);
-        let encoded = net.contact[1].map(p, &contact_act);
+        let mut contact_tokens = net.contact[1].map(p, &contact_act);
         let mut pooled = vec![0f32; b * d];
-        for ((row, &item), &w) in encoded.chunks_exact(d).zip(&contact_item).zip(&contact_weight) {
+        for ((row, &item), &w) in contact_tokens.chunks_exact(d).zip(&contact_item).zip(&contact_weight) {
             pooled[item * d..(item + 1) * d].iter_mut().zip(row).for_each(|(s, v)| *s += v * w);
         }
         for (row, count) in pooled.chunks_exact_mut(d).zip(&contact_count) {
             row.iter_mut().for_each(|v| *v /= count);
+        }
+        let kind = &p[net.contact_kind..net.contact_kind + d];
+        for row in contact_tokens.chunks_exact_mut(d) {
+            row.iter_mut().zip(kind).for_each(|(v, k)| *v += k);
         }
 
         debug_assert_eq!(inp.floor.len(), b * cfg.floor_points * FLOOR_FEATURES);
         debug_assert_eq!(inp.free.len(), b * cfg.free_points * FREE_FEATURES);
         let floor = PointTape::run(p, &net.floor, inp.floor, b);
         let free = PointTape::run(p, &net.free, inp.free, b);
-        let c_pre: Vec<f32> = (0..b * d).map(|i| ((time[i] + pooled[i]) + floor.max[i]) + free.max[i]).collect();
-        let c = ops::silu(&c_pre);
-        let mut modulation: Vec<Vec<f32>> = net.blocks.iter().map(|block| block.modulation.map(p, &c)).collect();
-        modulation.push(net.final_modulation.map(p, &c));
 
-        // Tokens: objects, then visible contact boxes.
+        // Rows: objects, then visible contact boxes.
         let objects = b * slots;
-        let rows = objects + contact_item.len();
-        let mut h = vec![0f32; rows * d];
-        net.input.forward(p, inp.noisy, &mut h[..objects * d]);
-        let kind = &p[net.contact_kind..net.contact_kind + d];
-        for (dst, row) in h[objects * d..].chunks_exact_mut(d).zip(encoded.chunks_exact(d)) {
-            dst.iter_mut().zip(row).zip(kind).for_each(|((o, v), k)| *o = v + k);
-        }
         let mut row_item: Vec<usize> = (0..objects).map(|r| r / slots).collect();
         row_item.extend_from_slice(&contact_item);
         let mut items: Vec<Vec<usize>> = (0..b).map(|i| (i * slots..(i + 1) * slots).collect()).collect();
         for (v, &item) in contact_item.iter().enumerate() {
             items[item].push(objects + v);
         }
+        ConditionTape {
+            items,
+            row_item,
+            contact_in,
+            contact_item,
+            contact_weight,
+            contact_count,
+            contact_pre,
+            contact_act,
+            contact_tokens,
+            pooled,
+            floor,
+            free,
+        }
+    }
+}
 
+/// One diffusion step's pass over a chunk whose conditions are encoded.
+pub(super) struct StepTape {
+    pub(super) time_in: Vec<f32>,
+    pub(super) time_pre: Vec<f32>,
+    pub(super) time_act: Vec<f32>,
+    pub(super) c_pre: Vec<f32>,
+    pub(super) c: Vec<f32>,
+    /// Per block (items × 6d), then the final layer's (items × 2d).
+    pub(super) modulation: Vec<Vec<f32>>,
+    pub(super) blocks: Vec<BlockTape>,
+    pub(super) final_u: Vec<f32>,
+    pub(super) final_rstd: Vec<f32>,
+    pub(super) final_m: Vec<f32>,
+    /// Predicted noise, items × slots × token_dim.
+    pub(super) out: Vec<f32>,
+}
+
+impl StepTape {
+    /// The pass for noisy tokens `noisy` at steps `t` (one per item).
+    pub(super) fn run(net: &GradNet, p: &[f32], cond: &ConditionTape, t: &[usize], noisy: &[f32]) -> StepTape {
+        let cfg = &net.cfg;
+        let (d, b) = (cfg.d_model, t.len());
+        let objects = b * cfg.slots();
+        let row_item = &cond.row_item;
+
+        let time_in = time_feature_values(t);
+        let time_pre = net.time[0].map(p, &time_in);
+        let time_act = ops::silu(&time_pre);
+        let time = net.time[1].map(p, &time_act);
+        let (floor, free) = (&cond.floor.max, &cond.free.max);
+        let c_pre: Vec<f32> = (0..b * d).map(|i| ((time[i] + cond.pooled[i]) + floor[i]) + free[i]).collect();
+        let c = ops::silu(&c_pre);
+        let mut modulation: Vec<Vec<f32>> = net.blocks.iter().map(|block| block.modulation.map(p, &c)).collect();
+        modulation.push(net.final_modulation.map(p, &c));
+
+        let mut h = vec![0f32; row_item.len() * d];
+        net.input.forward(p, noisy, &mut h[..objects * d]);
+        h[objects * d..].copy_from_slice(&cond.contact_tokens);
         let mut blocks = Vec::with_capacity(net.blocks.len());
         for (layers, m) in net.blocks.iter().zip(&modulation) {
             let m = Parts { values: m, parts: 6, d };
             let (u1, rstd1) = ops::layer_norm(&h, d);
-            let m1 = ops::modulate(&u1, m, 0, &row_item);
+            let m1 = ops::modulate(&u1, m, 0, row_item);
             let qkv = layers.qkv.map(p, &m1);
-            let (attended, probs) = ops::attention(&qkv, &items, cfg.heads, d);
+            let (attended, probs) = ops::attention(&qkv, &cond.items, cfg.heads, d);
             let attention_out = layers.proj.map(p, &attended);
-            ops::add_gated(&mut h, &attention_out, m, 2, &row_item);
+            ops::add_gated(&mut h, &attention_out, m, 2, row_item);
             let (u2, rstd2) = ops::layer_norm(&h, d);
-            let m2 = ops::modulate(&u2, m, 3, &row_item);
+            let m2 = ops::modulate(&u2, m, 3, row_item);
             let fc1_out = layers.fc1.map(p, &m2);
             let hidden = ops::silu(&fc1_out);
             let mlp_out = layers.fc2.map(p, &hidden);
-            ops::add_gated(&mut h, &mlp_out, m, 5, &row_item);
+            ops::add_gated(&mut h, &mlp_out, m, 5, row_item);
             blocks.push(BlockTape {
                 u1,
                 rstd1,
@@ -178,35 +214,33 @@ impl Tape {
         let last = Parts { values: modulation.last().expect("the final modulation"), parts: 2, d };
         let final_m = ops::modulate(&final_u, last, 0, &row_item[..objects]);
         let out = net.output.map(p, &final_m);
-        Tape {
-            items,
-            row_item,
-            time_in,
-            time_pre,
-            time_act,
-            contact_in,
-            contact_item,
-            contact_weight,
-            contact_count,
-            contact_pre,
-            contact_act,
-            floor,
-            free,
-            c_pre,
-            c,
-            modulation,
-            blocks,
-            final_u,
-            final_rstd,
-            final_m,
-            out,
-        }
+        StepTape { time_in, time_pre, time_act, c_pre, c, modulation, blocks, final_u, final_rstd, final_m, out }
+    }
+}
+
+/// Everything the forward pass of a training chunk computed that its backward pass needs.
+pub(super) struct Tape {
+    pub(super) cond: ConditionTape,
+    pub(super) step: StepTape,
+}
+
+impl Tape {
+    pub(super) fn run(net: &GradNet, p: &[f32], inp: &ChunkInputs) -> Tape {
+        let cond = ConditionTape::run(net, p, &inp.cond);
+        let step = StepTape::run(net, p, &cond, inp.t, inp.noisy);
+        Tape { cond, step }
     }
 
     /// This chunk's share of the batch loss Σ w (ε̂ − ε)² / `total`.
     pub(super) fn loss(&self, inp: &ChunkInputs, total: f32) -> f64 {
-        let sum: f64 =
-            self.out.iter().zip(inp.noise).zip(inp.weights).map(|((o, n), w)| (w * (o - n) * (o - n)) as f64).sum();
+        let sum: f64 = self
+            .step
+            .out
+            .iter()
+            .zip(inp.noise)
+            .zip(inp.weights)
+            .map(|((o, n), w)| (w * (o - n) * (o - n)) as f64)
+            .sum();
         sum / total as f64
     }
 }

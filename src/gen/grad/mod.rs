@@ -23,6 +23,7 @@ use super::dataset::NoisyBatch;
 use super::flat::ParamLayout;
 use super::matmul::LinearAt;
 use super::{GenError, ModelConfig};
+pub(crate) use forward::ConditionTape;
 use rayon::prelude::*;
 
 /// Batch items per chunk of work.
@@ -54,17 +55,22 @@ pub struct GradNet {
     output: LinearAt,
 }
 
-/// One chunk's slice of a batch.
+/// One chunk's conditions.
+pub(crate) struct ConditionInputs<'a> {
+    pub(crate) items: usize,
+    pub(crate) contacts: &'a [f32],
+    pub(crate) mask: &'a [f32],
+    pub(crate) floor: &'a [f32],
+    pub(crate) free: &'a [f32],
+}
+
+/// One chunk's slice of a training batch.
 struct ChunkInputs<'a> {
-    items: usize,
+    cond: ConditionInputs<'a>,
     t: &'a [usize],
     noisy: &'a [f32],
     noise: &'a [f32],
     weights: &'a [f32],
-    contacts: &'a [f32],
-    mask: &'a [f32],
-    floor: &'a [f32],
-    free: &'a [f32],
 }
 
 impl GradNet {
@@ -151,18 +157,37 @@ impl GradNet {
                 let end = (start + ITEMS_PER_CHUNK).min(host.size);
                 let span = |values: &'a [f32], width: usize| &values[start * width..end * width];
                 ChunkInputs {
-                    items: end - start,
+                    cond: ConditionInputs {
+                        items: end - start,
+                        contacts: span(&host.contacts, cfg.max_contacts * CONTACT_FEATURES),
+                        mask: span(&host.contact_mask, cfg.max_contacts),
+                        floor: span(&host.floor, cfg.floor_points * FLOOR_FEATURES),
+                        free: span(&host.free, cfg.free_points * FREE_FEATURES),
+                    },
                     t: &batch.t[start..end],
                     noisy: span(&batch.noisy, per_item),
                     noise: span(&batch.noise, per_item),
                     weights: span(&host.weights, per_item),
-                    contacts: span(&host.contacts, cfg.max_contacts * CONTACT_FEATURES),
-                    mask: span(&host.contact_mask, cfg.max_contacts),
-                    floor: span(&host.floor, cfg.floor_points * FLOOR_FEATURES),
-                    free: span(&host.free, cfg.free_points * FREE_FEATURES),
                 }
             })
             .collect()
+    }
+}
+
+impl GradNet {
+    /// The model's configuration.
+    pub fn config(&self) -> &ModelConfig {
+        &self.cfg
+    }
+
+    /// Encodes one chunk's conditions (for sampling, once per batch).
+    pub(crate) fn encode(&self, params: &[f32], inputs: &ConditionInputs) -> ConditionTape {
+        ConditionTape::run(self, params, inputs)
+    }
+
+    /// The predicted noise (items × slots × token_dim) of a chunk whose conditions are `cond`.
+    pub(crate) fn predict(&self, params: &[f32], cond: &ConditionTape, t: &[usize], noisy: &[f32]) -> Vec<f32> {
+        forward::StepTape::run(self, params, cond, t, noisy).out
     }
 }
 

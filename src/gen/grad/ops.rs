@@ -5,8 +5,62 @@
 /// Layer norm's ε under the square root (as the candle model).
 const NORM_EPS: f32 = 1e-6;
 
+/// Independent partial sums of [`sum`] and [`dot`]: a single running sum is one long chain of
+/// dependent additions; eight of them let the compiler use vector lanes.
+const LANES: usize = 8;
+
+/// Σ a, in [`LANES`] partial sums (a fixed order: deterministic).
+pub(super) fn sum(a: &[f32]) -> f32 {
+    let mut acc = [0f32; LANES];
+    let mut chunks = a.chunks_exact(LANES);
+    for c in &mut chunks {
+        acc.iter_mut().zip(c).for_each(|(s, v)| *s += v);
+    }
+    acc.iter().sum::<f32>() + chunks.remainder().iter().sum::<f32>()
+}
+
+/// Σ a·b, in [`LANES`] partial sums.
+pub(super) fn dot(a: &[f32], b: &[f32]) -> f32 {
+    debug_assert_eq!(a.len(), b.len());
+    let mut acc = [0f32; LANES];
+    let (mut ca, mut cb) = (a.chunks_exact(LANES), b.chunks_exact(LANES));
+    for (x, y) in (&mut ca).zip(&mut cb) {
+        for k in 0..LANES {
+            acc[k] += x[k] * y[k];
+        }
+    }
+    let tail: f32 = ca.remainder().iter().zip(cb.remainder()).map(|(x, y)| x * y).sum();
+    acc.iter().sum::<f32>() + tail
+}
+
+/// eˣ to within a few units in the last place, for x clamped to [−87, 88]: a polynomial
+/// (Cephes' expf) written so that loops over slices vectorise, where `f32::exp` is a call per
+/// element.
+#[inline(always)]
+pub(super) fn exp(x: f32) -> f32 {
+    const LOG2E: f32 = std::f32::consts::LOG2_E;
+    // ln 2 split in two, so that n · LN2_HI is exact.
+    const LN2_HI: f32 = 0.693_359_4;
+    const LN2_LO: f32 = -2.121_944_4e-4;
+    // Adding and subtracting 1.5 · 2²³ rounds to the nearest integer.
+    const ROUND: f32 = 12_582_912.0;
+    let x = x.clamp(-87.0, 88.0);
+    let t = x * LOG2E + ROUND;
+    let n = t - ROUND;
+    let r = x - n * LN2_HI - n * LN2_LO;
+    let mut p = 1.987_569_1e-4;
+    for c in [1.398_199_9e-3, 8.333_452e-3, 4.166_579_6e-2, 1.666_666_5e-1, 0.5] {
+        p = p * r + c;
+    }
+    let y = p * r * r + r + 1.0;
+    // 2ⁿ from n's integer bits in t (integer operations: no float-to-int conversion).
+    let n_bits = t.to_bits().wrapping_sub(ROUND.to_bits());
+    y * f32::from_bits(n_bits.wrapping_add(127) << 23)
+}
+
+#[inline(always)]
 pub(super) fn sigmoid(x: f32) -> f32 {
-    1.0 / (1.0 + (-x).exp())
+    1.0 / (1.0 + exp(-x))
 }
 
 /// SiLU of `pre` into a new vector.
@@ -37,10 +91,10 @@ pub(super) fn layer_norm(x: &[f32], d: usize) -> (Vec<f32>, Vec<f32>) {
     let mut u = vec![0f32; x.len()];
     let mut rstd = Vec::with_capacity(x.len() / d);
     for (row, out) in x.chunks_exact(d).zip(u.chunks_exact_mut(d)) {
-        let mean = row.iter().sum::<f32>() / d as f32;
-        let var = row.iter().map(|v| (v - mean) * (v - mean)).sum::<f32>() / d as f32;
-        let r = 1.0 / (var + NORM_EPS).sqrt();
-        out.iter_mut().zip(row).for_each(|(o, v)| *o = (v - mean) * r);
+        let mean = sum(row) / d as f32;
+        out.iter_mut().zip(row).for_each(|(o, v)| *o = v - mean);
+        let r = 1.0 / (dot(out, out) / d as f32 + NORM_EPS).sqrt();
+        out.iter_mut().for_each(|o| *o *= r);
         rstd.push(r);
     }
     (u, rstd)
@@ -50,8 +104,8 @@ pub(super) fn layer_norm(x: &[f32], d: usize) -> (Vec<f32>, Vec<f32>) {
 /// `rstd · (du − mean(du) − u · mean(du · u))` per row.
 pub(super) fn layer_norm_backward(u: &[f32], rstd: &[f32], du: &[f32], d: usize, dx: &mut [f32]) {
     for (((u, du), dx), r) in u.chunks_exact(d).zip(du.chunks_exact(d)).zip(dx.chunks_exact_mut(d)).zip(rstd) {
-        let mean_du = du.iter().sum::<f32>() / d as f32;
-        let mean_duu = du.iter().zip(u).map(|(a, b)| a * b).sum::<f32>() / d as f32;
+        let mean_du = sum(du) / d as f32;
+        let mean_duu = dot(du, u) / d as f32;
         for ((x, g), v) in dx.iter_mut().zip(du).zip(u) {
             *x += r * (g - mean_du - v * mean_duu);
         }
@@ -169,12 +223,12 @@ pub(super) fn attention(qkv: &[f32], items: &[Vec<usize>], heads: usize, d: usiz
                 let weights = &mut p[i * n..(i + 1) * n];
                 let mut max = f32::NEG_INFINITY;
                 for (w, &rj) in weights.iter_mut().zip(rows) {
-                    *w = q.iter().zip(col(rj, 1)).map(|(a, b)| a * b).sum::<f32>() * scale;
+                    *w = dot(q, col(rj, 1)) * scale;
                     max = max.max(*w);
                 }
                 let mut total = 0.0;
                 for w in weights.iter_mut() {
-                    *w = (*w - max).exp();
+                    *w = exp(*w - max);
                     total += *w;
                 }
                 weights.iter_mut().for_each(|w| *w /= total);
@@ -214,11 +268,11 @@ pub(super) fn attention_backward(
                 dp.clear();
                 for (&w, &rj) in pi.iter().zip(rows) {
                     let v = &qkv[at(rj, 2)..][..dh];
-                    dp.push(dout_i.iter().zip(v).map(|(a, b)| a * b).sum::<f32>());
+                    dp.push(dot(dout_i, v));
                     dqkv[at(rj, 2)..][..dh].iter_mut().zip(dout_i).for_each(|(g, o)| *g += w * o);
                 }
                 // dS_ij = P_ij (dP_ij − Σ_k P_ik dP_ik), then through S = q·k · scale.
-                let inner: f32 = pi.iter().zip(&dp).map(|(a, b)| a * b).sum();
+                let inner = dot(pi, &dp);
                 for ((&w, &g), &rj) in pi.iter().zip(&dp).zip(rows) {
                     let ds = w * (g - inner) * scale;
                     if ds == 0.0 {
@@ -280,6 +334,17 @@ mod tests {
             let n = numeric(|q| loss(&attention(q, &items, 2, 4).0, &r), &qkv, i);
             assert!((n - *g as f64).abs() < 2e-3, "{i}: {n} vs {g}");
         }
+    }
+
+    #[test]
+    fn exp_is_within_a_few_ulp_of_the_library_one() {
+        for i in -8700..8800 {
+            let x = i as f32 / 100.0 + 0.003;
+            let (want, got) = (x.exp(), exp(x));
+            assert!((got - want).abs() <= 4.0 * f32::EPSILON * want, "{x}: {got} vs {want}");
+        }
+        assert_eq!(exp(0.0), 1.0);
+        assert!(exp(-1e9) < 1e-37 && exp(1e9).is_finite());
     }
 
     #[test]
