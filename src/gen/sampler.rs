@@ -4,7 +4,7 @@
 //! the zero attributes the training data has there ([`empty_projection_steps`]).
 //!
 //! Noise comes from the crate's seeded generator, one stream per batch item, and the denoiser runs
-//! as [`FastDenoiser`] (conditions encoded once, each item on its own), so item i of a seed is the
+//! as [`FastDenoiser`] (conditions encoded once, no item's numbers depending on another's), so item i of a seed is the
 //! same whether it is sampled alone or in a batch.
 
 use super::model::CondTensors;

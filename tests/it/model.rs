@@ -4,7 +4,7 @@
 use crate::{root, shade_sim, stderr, stdout};
 use shade_sim::data::{SynthConfig, synthesize};
 use shade_sim::generator::train::{LogLine, read_log};
-use shade_sim::generator::{Checkpoint, ModelConfig, TrainObserver, TrainOptions, shipped_rooms, train};
+use shade_sim::generator::{Checkpoint, Engine, ModelConfig, TrainObserver, TrainOptions, shipped_rooms, train};
 use shade_sim::scene::{RoomType, Scene};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -84,6 +84,36 @@ fn a_stopped_and_resumed_run_ends_with_the_same_weights_as_an_uninterrupted_one(
     (rebalanced.resume, rebalanced.category_balance) = (true, 0.5);
     let err = train(&rebalanced, &AtomicBool::new(false), &mut ()).unwrap_err().to_string();
     assert!(err.contains("config.json") && err.contains("--category-balance 0, not 0.5"), "{err}");
+}
+
+#[test]
+fn the_fused_and_candle_engines_follow_the_same_loss_curve_and_share_checkpoints() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dataset(dir.path(), RoomType::Bedroom);
+    let run = |engine: Engine, name: &str, steps: u64| {
+        let mut o = options(&data, &dir.path().join(name));
+        (o.engine, o.steps, o.batch, o.warmup, o.log_every, o.val_every, o.lr) = (engine, steps, 8, 5, 5, 10, 1e-3);
+        o
+    };
+    let fused = train(&run(Engine::Fused, "fused", 40), &AtomicBool::new(false), &mut ()).unwrap();
+    let candle = train(&run(Engine::Candle, "candle", 40), &AtomicBool::new(false), &mut ()).unwrap();
+    let curve = |name: &str| read_log(&dir.path().join(name).join("log.jsonl")).unwrap();
+    let (a, b) = (curve("fused"), curve("candle"));
+    assert_eq!(a.len(), 8);
+    // The loss falls, and both engines see the same values along the way.
+    assert!(a[7].loss < 0.8 * a[0].loss, "{a:?}");
+    for (x, y) in a.iter().zip(&b) {
+        assert_eq!(x.step, y.step);
+        assert!((x.loss - y.loss).abs() < 0.01 * y.loss, "step {}: fused {} candle {}", x.step, x.loss, y.loss);
+    }
+    let (va, vb) = (fused.val_loss.unwrap(), candle.val_loss.unwrap());
+    assert!((va - vb).abs() < 0.01 * vb, "val {va} vs {vb}");
+
+    // A run started on one engine resumes on the other (the state is the same named tensors).
+    let mut more = run(Engine::Fused, "candle", 50);
+    more.resume = true;
+    let resumed = train(&more, &AtomicBool::new(false), &mut ()).unwrap();
+    assert_eq!((resumed.step, resumed.stopped), (50, false));
 }
 
 fn train_cli(data: &Path, out: &Path) -> std::process::Output {
