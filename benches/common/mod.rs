@@ -1,5 +1,5 @@
-//! Helpers shared by the benches: medians for the ratios printed at the end of a run, and the
-//! repository's scene folders. (Each bench uses some of them.)
+//! Helpers shared by the benches: medians and best times for the ratios printed at the end of a
+//! run, and the repository's scene folders. (Each bench uses some of them.)
 #![allow(dead_code)]
 
 use shade_sim::scene::Scene;
@@ -16,8 +16,8 @@ pub fn named_scenes(folder: &str) -> Vec<(String, Scene)> {
         .collect()
 }
 
-/// Median seconds of `f` over `n` runs.
-pub fn median(n: usize, mut f: impl FnMut()) -> f64 {
+/// Seconds of each of `n` runs of `f`, sorted.
+fn times(n: usize, mut f: impl FnMut()) -> Vec<f64> {
     let mut t: Vec<f64> = (0..n)
         .map(|_| {
             let start = std::time::Instant::now();
@@ -26,5 +26,16 @@ pub fn median(n: usize, mut f: impl FnMut()) -> f64 {
         })
         .collect();
     t.sort_by(f64::total_cmp);
-    t[n / 2]
+    t
+}
+
+/// Median seconds of `f` over `n` runs.
+pub fn median(n: usize, f: impl FnMut()) -> f64 {
+    times(n, f)[n / 2]
+}
+
+/// The fastest of `n` runs of `f`, in seconds: on a shared machine other work only ever slows a
+/// run down, so the best time is the least disturbed one.
+pub fn fastest(n: usize, f: impl FnMut()) -> f64 {
+    times(n, f)[0]
 }
