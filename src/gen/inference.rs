@@ -12,7 +12,6 @@
 //! An item's numbers do not depend on the other items of its chunk (every row of a product is
 //! computed alike), so an item sampled alone or in a batch gets the same numbers (tested).
 
-use super::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES};
 use super::flat::ParamLayout;
 use super::grad::{ConditionInputs, ConditionTape, GradNet};
 use super::model::{CondTensors, Denoiser};
@@ -66,19 +65,7 @@ impl FastDenoiser {
             .par_iter()
             .map(|&start| {
                 let end = (start + SAMPLING_CHUNK).min(items);
-                let span =
-                    |values: &'_ [f32], width: usize| -> Vec<f32> { values[start * width..end * width].to_vec() };
-                let (contacts, mask) =
-                    (span(&contacts, cfg.max_contacts * CONTACT_FEATURES), span(&mask, cfg.max_contacts));
-                let (floor, free) =
-                    (span(&floor, cfg.floor_points * FLOOR_FEATURES), span(&free, cfg.free_points * FREE_FEATURES));
-                let inputs = ConditionInputs {
-                    items: end - start,
-                    contacts: &contacts,
-                    mask: &mask,
-                    floor: &floor,
-                    free: &free,
-                };
+                let inputs = ConditionInputs::span(cfg, [&contacts, &mask, &floor, &free], start, end);
                 self.net.encode(&self.params, &inputs)
             })
             .collect();

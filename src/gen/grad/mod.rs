@@ -64,6 +64,22 @@ pub(crate) struct ConditionInputs<'a> {
     pub(crate) free: &'a [f32],
 }
 
+impl<'a> ConditionInputs<'a> {
+    /// Items `start..end` of a batch's conditions, laid out as `HostBatch` keeps them (contact
+    /// boxes, their mask, floor-plan points, free-space points; item after item).
+    pub(crate) fn span(cfg: &ModelConfig, all: [&'a [f32]; 4], start: usize, end: usize) -> ConditionInputs<'a> {
+        let [contacts, mask, floor, free] = all;
+        let span = |values: &'a [f32], width: usize| &values[start * width..end * width];
+        ConditionInputs {
+            items: end - start,
+            contacts: span(contacts, cfg.max_contacts * CONTACT_FEATURES),
+            mask: span(mask, cfg.max_contacts),
+            floor: span(floor, cfg.floor_points * FLOOR_FEATURES),
+            free: span(free, cfg.free_points * FREE_FEATURES),
+        }
+    }
+}
+
 /// One chunk's slice of a training batch.
 struct ChunkInputs<'a> {
     cond: ConditionInputs<'a>,
@@ -156,14 +172,9 @@ impl GradNet {
             .map(|start| {
                 let end = (start + ITEMS_PER_CHUNK).min(host.size);
                 let span = |values: &'a [f32], width: usize| &values[start * width..end * width];
+                let conditions = [&host.contacts[..], &host.contact_mask, &host.floor, &host.free];
                 ChunkInputs {
-                    cond: ConditionInputs {
-                        items: end - start,
-                        contacts: span(&host.contacts, cfg.max_contacts * CONTACT_FEATURES),
-                        mask: span(&host.contact_mask, cfg.max_contacts),
-                        floor: span(&host.floor, cfg.floor_points * FLOOR_FEATURES),
-                        free: span(&host.free, cfg.free_points * FREE_FEATURES),
-                    },
+                    cond: ConditionInputs::span(cfg, conditions, start, end),
                     t: &batch.t[start..end],
                     noisy: span(&batch.noisy, per_item),
                     noise: span(&batch.noise, per_item),
