@@ -133,7 +133,7 @@ fn guidance_batch(cfg: &ModelConfig) -> (Vec<Scene>, Bounds, Tensor) {
     let mut all = Vec::new();
     for s in &scenes {
         let window = s.room_window();
-        let (t, _) = tokens::encode(s, window.center, &bounds, cfg);
+        let (t, _) = tokens::encode(s, window.center, &[], &bounds, cfg);
         all.extend(t.into_iter().map(|v| v + 0.05 * rng.normal() as f32));
     }
     let x0 = Tensor::from_vec(all, (SAMPLE_BATCH, cfg.slots(), cfg.token_dim()), &Device::Cpu).unwrap();

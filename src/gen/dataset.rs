@@ -3,8 +3,9 @@
 
 use super::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES};
 use super::model::CondTensors;
-use super::{Bounds, Dihedral, Features, GenError, ModelConfig, Schedule, tokens};
+use super::{Bounds, Dihedral, Features, GenError, ModelConfig, Schedule, anchors, tokens};
 use crate::data::{DataError, Rng};
+use crate::geom::OBox;
 use crate::human::Conditions;
 use crate::scene::Scene;
 use candle_core::{Device, Tensor};
@@ -26,7 +27,8 @@ impl Example {
     /// Encodes `scene` for `cfg` with `bounds`.
     pub fn of(scene: &Scene, bounds: &Bounds, cfg: &ModelConfig) -> Example {
         let cond = Conditions::of(scene);
-        let (tokens, weights) = tokens::encode(scene, cond.window.center, bounds, cfg);
+        let boxes: Vec<OBox> = cond.contact_boxes.iter().map(|b| b.obox).collect();
+        let (tokens, weights) = tokens::encode(scene, cond.window.center, &boxes, bounds, cfg);
         Example { tokens, weights, features: Features::of(&cond, bounds, cfg) }
     }
 
@@ -111,7 +113,7 @@ pub fn load_split(dir: &Path, split: &str, bounds: &Bounds, cfg: &ModelConfig) -
 pub struct HostBatch {
     /// Scenes in the batch.
     pub size: usize,
-    /// Clean tokens, B × slots × token_dim.
+    /// Clean tokens in the model's frame ([`super::anchors`]), B × slots × token_dim.
     pub tokens: Vec<f32>,
     /// Loss weights, same shape.
     pub weights: Vec<f32>,
@@ -122,9 +124,11 @@ pub struct HostBatch {
 }
 
 impl HostBatch {
-    /// Appends one example.
-    pub fn push(&mut self, e: &Example) {
+    /// Appends one example, its tokens turned into the model's frame.
+    pub fn push(&mut self, e: &Example, cfg: &ModelConfig) {
+        let start = self.tokens.len();
         self.tokens.extend_from_slice(&e.tokens);
+        anchors::to_model(cfg, &e.features.contacts, &e.features.contact_mask, &mut self.tokens[start..]);
         self.weights.extend_from_slice(&e.weights);
         self.push_features(&e.features);
     }

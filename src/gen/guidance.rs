@@ -519,7 +519,7 @@ mod batch_tests {
         scene.objects[0].center[0] = min.x + 0.1;
         scene.objects[0].yaw = 0.0;
         let masks = SceneMasks::of(&scene);
-        let (tok, _) = tokens::encode(&scene, masks.window.center, &bounds, &cfg);
+        let (tok, _) = tokens::encode(&scene, masks.window.center, &[], &bounds, &cfg);
         let x0 = Tensor::from_vec(tok.clone(), (1, cfg.slots(), cfg.token_dim()), &candle_core::Device::Cpu).unwrap();
         let mut g = SpatialGuidance::new(GuidanceConfig::all(), &cfg, &bounds, &[&scene]);
         let mut x = x0.clone();

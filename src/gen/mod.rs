@@ -7,6 +7,7 @@
 //! Guidance terms themselves, physics and metrics live elsewhere.
 
 mod adamw;
+pub mod anchors;
 pub mod checkpoint;
 mod config;
 mod dataset;

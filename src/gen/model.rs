@@ -117,6 +117,8 @@ fn modulate(x: &Tensor, shift: &Tensor, scale: &Tensor) -> Result<Tensor, GenErr
 pub struct Denoiser {
     pub(super) cfg: ModelConfig,
     pub(super) input: Linear,
+    /// With anchored slots: the embedding of a slot's contact box, added to its token.
+    pub(super) anchor: Option<Linear>,
     pub(super) time: [Linear; 2],
     pub(super) contact: [Linear; 2],
     pub(super) contact_kind: Tensor,
@@ -140,6 +142,10 @@ impl Denoiser {
         let model = Denoiser {
             cfg: cfg.clone(),
             input: p.linear("input", cfg.token_dim(), d, false)?,
+            anchor: match cfg.anchor_scale > 0.0 {
+                true => Some(p.linear("anchor", CONTACT_FEATURES, d, false)?),
+                false => None,
+            },
             time: [p.linear("time.0", TIME_FEATURES, d, false)?, p.linear("time.1", d, d, false)?],
             contact: [p.linear("contact.0", CONTACT_FEATURES, d, false)?, p.linear("contact.1", d, d, false)?],
             contact_kind: p.get("contact_kind", &[1, 1, d], Init::Normal(0.02))?,
@@ -171,6 +177,13 @@ impl Denoiser {
         let c = (time + pooled + self.floor.forward(&cond.floor)? + self.free.forward(&cond.free)?)?.silu()?;
 
         let mut h = self.input.forward(x)?;
+        if let Some(anchor) = &self.anchor {
+            // Slot k < K gets the embedding of contact box k (nothing where the box is padding).
+            let k = cond.contact_mask.dim(1)?;
+            let embedded = anchor.forward(&cond.contacts)?.broadcast_mul(&mask)?;
+            let padding = Tensor::zeros((b, slots - k, self.cfg.d_model), x.dtype(), x.device())?;
+            h = (h + Tensor::cat(&[&embedded, &padding], 1)?)?;
+        }
         let mut bias = None;
         if self.cfg.contact_tokens {
             let k = cond.contact_mask.dim(1)?;

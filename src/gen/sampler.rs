@@ -9,7 +9,7 @@
 
 use super::model::CondTensors;
 use super::tokens::{CLASS_OFFSET, slot_class};
-use super::{Denoiser, FastDenoiser, GenError, Schedule};
+use super::{Denoiser, FastDenoiser, GenError, Schedule, anchors};
 use crate::data::Rng;
 use candle_core::{Device, Tensor};
 
@@ -25,7 +25,8 @@ pub trait Guidance {
 
 /// Samples a batch; `seeds[i]` drives item i. In steps t < `projection_steps` the empty slots of x̂0
 /// get zero attributes ([`empty_projection_steps`] is the default; 0 samples the model's raw
-/// output). Returns the tokens (B × slots × token_dim).
+/// output). Returns the tokens in world form (B × slots × token_dim); the diffusion itself runs in
+/// the model's frame ([`anchors`]), and the guidance sees world tokens.
 pub fn sample(
     model: &Denoiser,
     schedule: &Schedule,
@@ -46,6 +47,18 @@ pub fn sample(
         }
         Ok(Tensor::from_vec(v, shape, &Device::Cpu)?)
     };
+    // The diffusion runs in the model's frame (anchored slots relative to their boxes); guidance
+    // and the caller see world tokens.
+    let contacts = cond.contacts.flatten_all()?.to_vec1::<f32>()?;
+    let mask = cond.contact_mask.flatten_all()?.to_vec1::<f32>()?;
+    let frame = |x: &Tensor, into_model: bool| -> Result<Tensor, GenError> {
+        let mut v = x.flatten_all()?.to_vec1::<f32>()?;
+        match into_model {
+            true => anchors::to_model(cfg, &contacts, &mask, &mut v),
+            false => anchors::to_world(cfg, &contacts, &mask, &mut v),
+        }
+        Ok(Tensor::from_vec(v, shape, &Device::Cpu)?)
+    };
     let fast = FastDenoiser::of(model)?;
     let mut prepared = fast.prepare(cond)?;
     let mut x = gaussian(&mut rngs)?;
@@ -55,7 +68,7 @@ pub fn sample(
         let x0 = ((&x - (eps * (1.0 - ab).sqrt())?)? / ab.sqrt())?.clamp(-1f32, 1f32)?;
         let x0 = if t < projection_steps { zero_empty_attributes(&x0, cfg)? } else { x0 };
         let x0 = match guidance.as_deref_mut() {
-            Some(g) => g.guide(&x0, t)?,
+            Some(g) => frame(&g.guide(&frame(&x0, false)?, t)?, true)?,
             None => x0,
         };
         let (c0, ct, var) = schedule.posterior(t);
@@ -63,7 +76,7 @@ pub fn sample(
         // Detached so that nothing (a guidance gradient) chains the steps' graphs.
         x = if t > 0 { (mean + (gaussian(&mut rngs)? * var.sqrt())?)? } else { mean }.detach();
     }
-    Ok(x.flatten_all()?.to_vec1::<f32>()?)
+    Ok(frame(&x, false)?.flatten_all()?.to_vec1::<f32>()?)
 }
 
 /// The last steps in which [`zero_empty_attributes`] projects x̂0: 0.4 T (80 of 200).

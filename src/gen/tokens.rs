@@ -9,6 +9,8 @@
 
 use super::ModelConfig;
 use crate::data::SplitStats;
+use crate::geom::OBox;
+use crate::measure::contact_iou;
 use crate::scene::{Object, Scene};
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
@@ -80,20 +82,54 @@ pub const CLASS_OFFSET: usize = 8;
 
 /// The tokens of a scene's objects (slots × token_dim, empty slots after the objects) and the loss
 /// weights: an empty slot's continuous attributes carry no loss, only its class does.
-/// Objects beyond the slot count are dropped.
-pub fn encode(scene: &Scene, window_center: DVec2, bounds: &Bounds, cfg: &ModelConfig) -> (Vec<f32>, Vec<f32>) {
+///
+/// With anchored slots (`cfg.anchor_scale > 0`), slot k first holds the piece serving contact box k
+/// of `contact_boxes` (the one covering most of the box, as contact IoU measures; a piece serving
+/// several boxes is in each of their slots; a box nothing covers leaves its slot empty); the other
+/// pieces follow in scene order. Without, the pieces fill the slots in scene order. Tokens are in
+/// world form either way ([`super::anchors`] converts). Pieces beyond the slot count are dropped.
+pub fn encode(
+    scene: &Scene,
+    window_center: DVec2,
+    contact_boxes: &[OBox],
+    bounds: &Bounds,
+    cfg: &ModelConfig,
+) -> (Vec<f32>, Vec<f32>) {
     let dim = cfg.token_dim();
     let classes = cfg.classes();
+    let categories = cfg.room_type.categories();
+    let known: Vec<(usize, &Object)> = scene
+        .objects
+        .iter()
+        .filter_map(|o| categories.iter().position(|&c| c == o.category).map(|class| (class, o)))
+        .collect();
+    let mut order: Vec<Option<usize>> = Vec::new();
+    if cfg.anchor_scale > 0.0 {
+        for b in contact_boxes.iter().take(cfg.max_contacts) {
+            let serving = known
+                .iter()
+                .enumerate()
+                .map(|(i, (_, o))| (i, contact_iou(b, std::slice::from_ref(o))))
+                .filter(|(_, v)| *v > 0.0)
+                .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)));
+            order.push(serving.map(|(i, _)| i));
+        }
+    }
+    let free: Vec<Option<usize>> = (0..known.len()).filter(|i| !order.contains(&Some(*i))).map(Some).collect();
+    order.extend(free);
+    order.resize(cfg.slots(), None);
+
     let mut tokens = vec![0f32; cfg.slots() * dim];
     let mut weights = vec![1f32; cfg.slots() * dim];
-    let categories = cfg.room_type.categories();
-    let mut placed = 0;
-    for o in &scene.objects {
-        let Some(class) = categories.iter().position(|&c| c == o.category) else { continue };
-        if placed == cfg.slots() {
-            break;
-        }
-        let t = &mut tokens[placed * dim..(placed + 1) * dim];
+    for (slot, piece) in order.into_iter().enumerate() {
+        let t = &mut tokens[slot * dim..(slot + 1) * dim];
+        let Some((class, o)) = piece.map(|i| known[i]) else {
+            for k in 0..classes {
+                t[CLASS_OFFSET + k] = if k == classes - 1 { 1.0 } else { -1.0 };
+            }
+            weights[slot * dim..slot * dim + CLASS_OFFSET].fill(0.0);
+            continue;
+        };
         let rel = [o.center[0] - window_center.x, o.center[1] - window_center.y, o.center[2]];
         let c = bounds.scale_center(rel);
         let s = bounds.scale_size(o.size);
@@ -104,14 +140,6 @@ pub fn encode(scene: &Scene, window_center: DVec2, bounds: &Bounds, cfg: &ModelC
         for k in 0..classes {
             t[CLASS_OFFSET + k] = if k == class { 1.0 } else { -1.0 };
         }
-        placed += 1;
-    }
-    for slot in placed..cfg.slots() {
-        let t = &mut tokens[slot * dim..(slot + 1) * dim];
-        for k in 0..classes {
-            t[CLASS_OFFSET + k] = if k == classes - 1 { 1.0 } else { -1.0 };
-        }
-        weights[slot * dim..slot * dim + CLASS_OFFSET].fill(0.0);
     }
     (tokens, weights)
 }
@@ -124,7 +152,9 @@ pub fn slot_class(token: &[f32], cfg: &ModelConfig) -> usize {
 }
 
 /// The objects of generated tokens (slots × token_dim): one per slot whose largest class is not
-/// "empty", ids `o0`, `o1`, … in slot order.
+/// "empty", ids `o0`, `o1`, … in slot order — except that a slot whose piece is a copy of an
+/// earlier slot's ([`is_copy`]) adds nothing: with anchored slots, a sofa serving two sitters is
+/// predicted in both sitters' slots.
 pub fn decode(tokens: &[f32], window_center: DVec2, ceiling: f64, bounds: &Bounds, cfg: &ModelConfig) -> Vec<Object> {
     decode_slots(tokens, window_center, ceiling, bounds, cfg).into_iter().map(|(_, o)| o).collect()
 }
@@ -155,9 +185,18 @@ pub fn decode_slots(
             size,
             yaw: if yaw.is_finite() { yaw } else { 0.0 },
         };
-        objects.push((slot, object));
+        if !objects.iter().any(|(_, kept)| is_copy(&object, kept)) {
+            objects.push((slot, object));
+        }
     }
     objects
+}
+
+/// Whether `a` and `b` are one piece: the same category, each one's centre inside the other's
+/// footprint. The training data never has two such pieces (they would overlap by half or more).
+pub fn is_copy(a: &Object, b: &Object) -> bool {
+    let inside = |p: &Object, q: &Object| q.obox().footprint_contains(DVec2::new(p.center[0], p.center[1]));
+    a.category == b.category && inside(a, b) && inside(b, a)
 }
 
 #[cfg(test)]
@@ -181,7 +220,7 @@ mod tests {
             let cfg = ModelConfig::tiny(room);
             for scene in &scenes {
                 let window = RoomWindow::around(room.window_side(), &scene.floor_plan.polygon());
-                let (tokens, weights) = encode(scene, window.center, &bounds, &cfg);
+                let (tokens, weights) = encode(scene, window.center, &[], &bounds, &cfg);
                 assert_eq!(tokens.len(), cfg.slots() * cfg.token_dim());
                 assert!(tokens.iter().all(|v| (-1.0 - 1e-6..=1.0 + 1e-6).contains(v)));
                 let back = decode(&tokens, window.center, scene.floor_plan.height, &bounds, &cfg);
@@ -203,6 +242,38 @@ mod tests {
                 assert_eq!(weights.len(), cfg.slots() * dim);
             }
         }
+    }
+
+    #[test]
+    fn anchored_slots_hold_each_boxs_piece_and_decode_to_the_scene() {
+        let room = RoomType::Living;
+        let scenes: Vec<Scene> = (0..40).map(|i| generate_room(room, 3, i, false).scene).collect();
+        let bounds = bounds_of(&scenes);
+        let cfg = ModelConfig::tiny(room);
+        assert!(cfg.anchor_scale > 0.0);
+        let dim = cfg.token_dim();
+        let key = |o: &Object| (o.category, (o.center[0] * 1e3).round() as i64, (o.center[1] * 1e3).round() as i64);
+        let mut shared = 0;
+        for scene in &scenes {
+            let cond = crate::human::Conditions::of(scene);
+            let boxes: Vec<OBox> = cond.contact_boxes.iter().map(|b| b.obox).take(cfg.max_contacts).collect();
+            let (tokens, _) = encode(scene, cond.window.center, &boxes, &bounds, &cfg);
+            let slots = decode_slots(&tokens, cond.window.center, scene.floor_plan.height, &bounds, &cfg);
+            // Every piece once, duplicates folded.
+            let mut want: Vec<_> = scene.objects.iter().map(key).collect();
+            let mut got: Vec<_> = slots.iter().map(|(_, o)| key(o)).collect();
+            want.sort();
+            got.sort();
+            assert_eq!(got, want);
+            // Slot k's token is the piece covering most of box k.
+            for (k, b) in boxes.iter().enumerate() {
+                let best = scene.objects.iter().map(|o| contact_iou(b, std::slice::from_ref(o))).fold(0.0, f64::max);
+                let one = decode(&tokens[k * dim..(k + 1) * dim], cond.window.center, 2.6, &bounds, &cfg);
+                assert!((contact_iou(b, &one) - best).abs() < 1e-4, "box {k}");
+            }
+            shared += boxes.len() - slots.iter().filter(|(s, _)| *s < boxes.len()).count();
+        }
+        assert!(shared > 0, "some sofa serves two sitters in 40 living rooms");
     }
 
     #[test]

@@ -288,9 +288,9 @@ fn draw_batch(set: &[Example], size: usize, rng: &mut Rng, cfg: &ModelConfig, au
         let e = &set[rng.index(set.len())];
         if augment {
             let g = Dihedral { quarter_turns: rng.index(4) as u8, mirror: rng.chance(0.5) };
-            batch.push(&e.transformed(g, cfg));
+            batch.push(&e.transformed(g, cfg), cfg);
         } else {
-            batch.push(e);
+            batch.push(e, cfg);
         }
     }
     batch
@@ -308,7 +308,7 @@ fn validation_loss(
     let (mut sum, mut n) = (0.0, 0.0);
     for (k, chunk) in val.chunks(64).enumerate() {
         let mut host = HostBatch::default();
-        chunk.iter().for_each(|e| host.push(e));
+        chunk.iter().for_each(|e| host.push(e, cfg));
         let mut rng = Rng::for_item(seed ^ 0x5641_4c49_4441_5445, k as u64);
         let batch = NoisyBatch::draw(host, schedule, &mut rng, cfg);
         sum += engine.loss(ema, &batch)? * chunk.len() as f64;

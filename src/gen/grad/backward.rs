@@ -60,6 +60,15 @@ pub(super) fn run(net: &GradNet, p: &[f32], tape: &Tape, inp: &ChunkInputs, tota
     // Tokens: the object rows came from the input layer, the contact rows from the encoded boxes
     // plus the learned contact-kind vector.
     net.input.backward(p, g, inp.noisy, &dh[..objects * d], None);
+    if let Some(anchor) = &net.anchor {
+        let danchored: Vec<f32> = cond
+            .contact_row
+            .iter()
+            .zip(&cond.contact_weight)
+            .flat_map(|(&r, &w)| dh[r * d..(r + 1) * d].iter().map(move |v| v * w))
+            .collect();
+        anchor.backward(p, g, &cond.contact_in, &danchored, None);
+    }
     let mut dencoded = dh[objects * d..].to_vec();
     let kind = &mut g[net.contact_kind..net.contact_kind + d];
     for row in dencoded.chunks_exact(d) {

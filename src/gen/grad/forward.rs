@@ -69,6 +69,10 @@ pub(crate) struct ConditionTape {
     pub(super) contact_in: Vec<f32>,
     pub(super) contact_item: Vec<usize>,
     pub(super) contact_weight: Vec<f32>,
+    /// The object row each visible box is anchored to (item × slots + box index).
+    pub(super) contact_row: Vec<usize>,
+    /// With anchored slots: each visible box's embedding × its mask weight, added to its row.
+    pub(super) anchored: Vec<f32>,
     /// Per item: Σ mask + 1e-6.
     pub(super) contact_count: Vec<f32>,
     pub(super) contact_pre: Vec<f32>,
@@ -85,12 +89,21 @@ impl ConditionTape {
         let cfg = &net.cfg;
         let (d, slots, b) = (cfg.d_model, cfg.slots(), inp.items);
         let (mut contact_in, mut contact_item, mut contact_weight) = (Vec::new(), Vec::new(), Vec::new());
+        let mut contact_row = Vec::new();
         for (k, (features, &w)) in inp.contacts.chunks_exact(CONTACT_FEATURES).zip(inp.mask).enumerate() {
             if w != 0.0 {
                 contact_in.extend_from_slice(features);
                 contact_item.push(k / cfg.max_contacts);
                 contact_weight.push(w);
+                contact_row.push(k / cfg.max_contacts * slots + k % cfg.max_contacts);
             }
+        }
+        let mut anchored = match &net.anchor {
+            Some(anchor) => anchor.map(p, &contact_in),
+            None => Vec::new(),
+        };
+        for (row, &w) in anchored.chunks_exact_mut(d).zip(&contact_weight) {
+            row.iter_mut().for_each(|v| *v *= w);
         }
         // Σ mask + 1e-6 in the candle model's order: the sum first, then the ε.
         let contact_count: Vec<f32> =
@@ -129,6 +142,8 @@ impl ConditionTape {
             contact_in,
             contact_item,
             contact_weight,
+            contact_row,
+            anchored,
             contact_count,
             contact_pre,
             contact_act,
@@ -177,6 +192,9 @@ impl StepTape {
 
         let mut h = vec![0f32; row_item.len() * d];
         net.input.forward(p, noisy, &mut h[..objects * d]);
+        for (&r, e) in cond.contact_row.iter().zip(cond.anchored.chunks_exact(d)) {
+            h[r * d..(r + 1) * d].iter_mut().zip(e).for_each(|(v, e)| *v += e);
+        }
         h[objects * d..].copy_from_slice(&cond.contact_tokens);
         let mut blocks = Vec::with_capacity(net.blocks.len());
         for (layers, m) in net.blocks.iter().zip(&modulation) {

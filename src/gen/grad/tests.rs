@@ -23,7 +23,7 @@ fn batch(room: RoomType, cfg: &ModelConfig, bounds: &crate::generator::Bounds, n
         if seed == 3 {
             e.features.free.chunks_exact_mut(3).for_each(|p| p.copy_from_slice(&[0.0, 0.0, 0.0]));
         }
-        host.push(&e);
+        host.push(&e, cfg);
     }
     let mut b = NoisyBatch::draw(host, &Schedule::linear(cfg.diffusion_steps), &mut Rng::new(5), cfg);
     (b.t[0], b.t[n - 1]) = (0, cfg.diffusion_steps - 1);
@@ -81,4 +81,25 @@ fn gradients_equal_candles_at_initialisation() {
         assert!(*worst <= 1e-4 * scale.max(1e-6), "{name}: worst {worst:e} of {scale:e}");
     }
     assert!(grads["final.output.weight"].1 > 0.0 && grads["blocks.0.qkv.weight"].1 == 0.0);
+}
+
+#[test]
+fn gradients_equal_candles_with_anchored_slots_and_every_weight_set() {
+    // Every parameter random (the zero-initialised modulations and outputs too), so every path —
+    // the anchored slots' box embedding included — carries a gradient.
+    let cfg = ModelConfig::tiny(RoomType::Living);
+    assert!(cfg.anchor_scale > 0.0);
+    let mut init = Params::random(4);
+    crate::generator::Denoiser::new(&cfg, &mut init).unwrap();
+    let (layout, _) = ParamLayout::of(&init.snapshot().unwrap()).unwrap();
+    let mut rng = Rng::new(8);
+    let params: Vec<f32> = (0..layout.len()).map(|_| 0.2 * rng.normal() as f32).collect();
+    let checkpoint = shipped_model(RoomType::Living).unwrap();
+    let b = batch(RoomType::Living, &cfg, &checkpoint.meta.bounds, 7);
+    let grads = compare(&layout, &params, &b, &cfg);
+    for (name, (worst, scale)) in &grads {
+        assert!(*scale > 0.0, "{name}: no gradient");
+        assert!(*worst <= 1e-4 * scale, "{name}: worst {worst:e} of {scale:e}");
+    }
+    assert!(grads.contains_key("anchor.weight"));
 }
