@@ -9,6 +9,8 @@ pub const CONTACT_FEATURES: usize = 11;
 pub const FLOOR_FEATURES: usize = 4;
 /// Features of one free-space point: position (2), whether the mask had any pixel (1).
 pub const FREE_FEATURES: usize = 3;
+/// Hidden width of the relation-bias MLP ([`ModelConfig::relation_bias`]).
+pub const RELATION_HIDDEN: usize = 32;
 /// Sinusoidal time features.
 pub const TIME_FEATURES: usize = 64;
 
@@ -45,6 +47,10 @@ pub struct ModelConfig {
     /// slot free, as in the models shipped before it; older configs read as 0).
     #[serde(default)]
     pub anchor_scale: f64,
+    /// Whether every attention score gets a learned bias from the two tokens' relation (position
+    /// and yaw of one in the other's frame, distance; [`super::relations`]). Off in older configs.
+    #[serde(default)]
+    pub relation_bias: bool,
 }
 
 impl ModelConfig {
@@ -63,6 +69,7 @@ impl ModelConfig {
             free_points: 64,
             diffusion_steps: 200,
             anchor_scale: Self::ANCHOR_SCALE,
+            relation_bias: true,
         }
     }
 
@@ -87,6 +94,7 @@ impl ModelConfig {
             free_points: 16,
             diffusion_steps: 200,
             anchor_scale: Self::ANCHOR_SCALE,
+            relation_bias: true,
         }
     }
 

@@ -23,6 +23,7 @@ mod matmul;
 mod model;
 mod params;
 pub mod phys_guidance;
+pub mod relations;
 mod sampler;
 mod schedule;
 mod shipped;

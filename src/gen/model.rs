@@ -9,8 +9,9 @@
 //!
 //! This module only maps tensors to tensors; tokens, features and sampling live beside it.
 
-use super::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES, TIME_FEATURES};
+use super::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES, RELATION_HIDDEN, TIME_FEATURES};
 use super::params::{Init, Linear, Params, layer_norm};
+use super::relations::{self, RELATION_FEATURES};
 use super::{GenError, ModelConfig};
 use candle_core::{D, Device, Tensor};
 use std::collections::BTreeMap;
@@ -119,6 +120,8 @@ pub struct Denoiser {
     pub(super) input: Linear,
     /// With anchored slots: the embedding of a slot's contact box, added to its token.
     pub(super) anchor: Option<Linear>,
+    /// With the relation bias: the MLP from a pair's relation to one score bias per head.
+    pub(super) relation: Option<[Linear; 2]>,
     pub(super) time: [Linear; 2],
     pub(super) contact: [Linear; 2],
     pub(super) contact_kind: Tensor,
@@ -144,6 +147,13 @@ impl Denoiser {
             input: p.linear("input", cfg.token_dim(), d, false)?,
             anchor: match cfg.anchor_scale > 0.0 {
                 true => Some(p.linear("anchor", CONTACT_FEATURES, d, false)?),
+                false => None,
+            },
+            relation: match cfg.relation_bias {
+                true => Some([
+                    p.linear("relation.0", RELATION_FEATURES, RELATION_HIDDEN, false)?,
+                    p.linear("relation.1", RELATION_HIDDEN, cfg.heads, true)?,
+                ]),
                 false => None,
             },
             time: [p.linear("time.0", TIME_FEATURES, d, false)?, p.linear("time.1", d, d, false)?],
@@ -191,6 +201,13 @@ impl Denoiser {
             let visible = Tensor::cat(&[&Tensor::ones((b, slots), x.dtype(), x.device())?, &cond.contact_mask], 1)?;
             bias = Some(((visible - 1.0)? * 1e9)?.reshape((b, 1, 1, slots + k))?);
         }
+        if let Some(relation) = &self.relation {
+            let rel = self.relation_bias(relation, x, cond)?;
+            bias = Some(match bias {
+                Some(mask) => rel.broadcast_add(&mask)?,
+                None => rel,
+            });
+        }
         for block in &self.blocks {
             h = block.forward(&h, &c, bias.as_ref())?;
         }
@@ -199,6 +216,35 @@ impl Denoiser {
         let m = self.final_modulation.forward(&c)?;
         let (shift, scale) = (m.narrow(1, 0, d)?.unsqueeze(1)?, m.narrow(1, d, d)?.unsqueeze(1)?);
         self.output.forward(&modulate(&layer_norm(&h)?, &shift, &scale)?)
+    }
+}
+
+impl Denoiser {
+    /// The relation bias (B, heads, N, N) of the noisy tokens `x` and the contact boxes (which
+    /// are rows only with `contact_tokens`), from features computed on the host.
+    fn relation_bias(&self, relation: &[Linear; 2], x: &Tensor, cond: &CondTensors) -> Result<Tensor, GenError> {
+        let cfg = &self.cfg;
+        let (b, slots, dim) = x.dims3()?;
+        let k = cfg.max_contacts;
+        let values = x.flatten_all()?.to_vec1::<f32>()?;
+        let contacts = cond.contacts.flatten_all()?.to_vec1::<f32>()?;
+        let mask = cond.contact_mask.flatten_all()?.to_vec1::<f32>()?;
+        let n = if cfg.contact_tokens { slots + k } else { slots };
+        let mut features = Vec::with_capacity(b * n * n * RELATION_FEATURES);
+        for item in 0..b {
+            let mut poses = relations::poses(
+                cfg,
+                &values[item * slots * dim..(item + 1) * slots * dim],
+                &contacts[item * k * CONTACT_FEATURES..(item + 1) * k * CONTACT_FEATURES],
+                &mask[item * k..(item + 1) * k],
+                true,
+            );
+            poses.truncate(n);
+            features.extend(relations::pair_features(&poses));
+        }
+        let f = Tensor::from_vec(features, (b, n, n, RELATION_FEATURES), x.device())?;
+        let out = relation[1].forward(&relation[0].forward(&f)?.silu()?)?;
+        Ok(out.permute((0, 3, 1, 2))?.contiguous()?)
     }
 }
 

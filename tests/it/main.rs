@@ -7,6 +7,7 @@ mod data;
 mod examples;
 mod export;
 mod geom_props;
+mod hand_built;
 mod import;
 mod layers;
 mod model;

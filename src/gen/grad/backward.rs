@@ -29,6 +29,7 @@ pub(super) fn run(net: &GradNet, p: &[f32], tape: &Tape, inp: &ChunkInputs, tota
         &row_item[..objects],
         &dfinal,
     );
+    let mut dbias: Vec<Vec<f32>> = step.relation_bias.iter().map(|b| vec![0f32; b.len()]).collect();
     let mut dh = vec![0f32; rows * d];
     ops::layer_norm_backward(&step.final_u, &step.final_rstd, &du, d, &mut dh[..objects * d]);
 
@@ -50,7 +51,8 @@ pub(super) fn run(net: &GradNet, p: &[f32], tape: &Tape, inp: &ChunkInputs, tota
         let dattn = ops::add_gated_backward(&dh, &bt.attention_out, m, &mut dm, 2, row_item);
         let mut dattended = vec![0f32; rows * d];
         layers.proj.backward(p, g, &bt.attended, &dattn, Some(&mut dattended));
-        let dqkv = ops::attention_backward(&bt.qkv, &bt.probs, &cond.items, cfg.heads, d, &dattended);
+        let dbias = net.relation.as_ref().map(|_| &mut dbias[..]);
+        let dqkv = ops::attention_backward(&bt.qkv, &bt.probs, &cond.items, cfg.heads, d, &dattended, dbias);
         let mut dm1 = vec![0f32; rows * d];
         layers.qkv.backward(p, g, &bt.m1, &dqkv, Some(&mut dm1));
         let du1 = ops::modulate_backward(&bt.u1, m, &mut dm, 0, row_item, &dm1);
@@ -73,6 +75,26 @@ pub(super) fn run(net: &GradNet, p: &[f32], tape: &Tape, inp: &ChunkInputs, tota
     let kind = &mut g[net.contact_kind..net.contact_kind + d];
     for row in dencoded.chunks_exact(d) {
         kind.iter_mut().zip(row).for_each(|(k, v)| *k += v);
+    }
+
+    // The relation bias is shared by every block's attention.
+    if let Some(layers) = &net.relation {
+        let heads = cfg.heads;
+        let mut dout = vec![0f32; step.relation_act.len() / layers[1].input * heads];
+        let mut at = 0;
+        for (item, rows) in cond.items.iter().enumerate() {
+            let pairs = rows.len() * rows.len();
+            for head in 0..heads {
+                for (q, v) in dbias[item * heads + head].iter().enumerate() {
+                    dout[(at + q) * heads + head] = *v;
+                }
+            }
+            at += pairs;
+        }
+        let mut dact = vec![0f32; step.relation_act.len()];
+        layers[1].backward(p, g, &step.relation_act, &dout, Some(&mut dact));
+        ops::silu_backward(&step.relation_pre, &mut dact);
+        layers[0].backward(p, g, &step.relation_in, &dact, None);
     }
 
     // The condition c = SiLU(time + pooled contacts + floor + free) feeds every modulation.

@@ -14,6 +14,7 @@ use super::{ChunkInputs, ConditionInputs, GradNet};
 use crate::generator::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES};
 use crate::generator::matmul::LinearAt;
 use crate::generator::model::time_feature_values;
+use crate::generator::relations;
 
 /// A PointNet's activations: ReLU outputs of the first two layers, the third's output and, per
 /// item, the max over the points.
@@ -69,6 +70,9 @@ pub(crate) struct ConditionTape {
     pub(super) contact_in: Vec<f32>,
     pub(super) contact_item: Vec<usize>,
     pub(super) contact_weight: Vec<f32>,
+    /// Every item's contact features and mask as given (padding included).
+    pub(super) contacts: Vec<f32>,
+    pub(super) mask: Vec<f32>,
     /// The object row each visible box is anchored to (item × slots + box index).
     pub(super) contact_row: Vec<usize>,
     /// With anchored slots: each visible box's embedding × its mask weight, added to its row.
@@ -142,6 +146,8 @@ impl ConditionTape {
             contact_in,
             contact_item,
             contact_weight,
+            contacts: inp.contacts.to_vec(),
+            mask: inp.mask.to_vec(),
             contact_row,
             anchored,
             contact_count,
@@ -162,6 +168,12 @@ pub(super) struct StepTape {
     pub(super) time_act: Vec<f32>,
     pub(super) c_pre: Vec<f32>,
     pub(super) c: Vec<f32>,
+    /// With the relation bias: the pairs' features, the MLP's pre-activation and activation, and
+    /// the bias per item and head (n × n each).
+    pub(super) relation_in: Vec<f32>,
+    pub(super) relation_pre: Vec<f32>,
+    pub(super) relation_act: Vec<f32>,
+    pub(super) relation_bias: Vec<Vec<f32>>,
     /// Per block (items × 6d), then the final layer's (items × 2d).
     pub(super) modulation: Vec<Vec<f32>>,
     pub(super) blocks: Vec<BlockTape>,
@@ -190,6 +202,12 @@ impl StepTape {
         let mut modulation: Vec<Vec<f32>> = net.blocks.iter().map(|block| block.modulation.map(p, &c)).collect();
         modulation.push(net.final_modulation.map(p, &c));
 
+        let (relation_in, relation_pre, relation_act, relation_bias) = match &net.relation {
+            Some(layers) => relation_bias(net, p, layers, cond, noisy),
+            None => Default::default(),
+        };
+        let bias = net.relation.as_ref().map(|_| &relation_bias[..]);
+
         let mut h = vec![0f32; row_item.len() * d];
         net.input.forward(p, noisy, &mut h[..objects * d]);
         for (&r, e) in cond.contact_row.iter().zip(cond.anchored.chunks_exact(d)) {
@@ -202,7 +220,7 @@ impl StepTape {
             let (u1, rstd1) = ops::layer_norm(&h, d);
             let m1 = ops::modulate(&u1, m, 0, row_item);
             let qkv = layers.qkv.map(p, &m1);
-            let (attended, probs) = ops::attention(&qkv, &cond.items, cfg.heads, d);
+            let (attended, probs) = ops::attention(&qkv, &cond.items, cfg.heads, d, bias);
             let attention_out = layers.proj.map(p, &attended);
             ops::add_gated(&mut h, &attention_out, m, 2, row_item);
             let (u2, rstd2) = ops::layer_norm(&h, d);
@@ -232,8 +250,63 @@ impl StepTape {
         let last = Parts { values: modulation.last().expect("the final modulation"), parts: 2, d };
         let final_m = ops::modulate(&final_u, last, 0, &row_item[..objects]);
         let out = net.output.map(p, &final_m);
-        StepTape { time_in, time_pre, time_act, c_pre, c, modulation, blocks, final_u, final_rstd, final_m, out }
+        StepTape {
+            time_in,
+            time_pre,
+            time_act,
+            c_pre,
+            c,
+            relation_in,
+            relation_pre,
+            relation_act,
+            relation_bias,
+            modulation,
+            blocks,
+            final_u,
+            final_rstd,
+            final_m,
+            out,
+        }
     }
+}
+
+/// The relation bias of a chunk: every item's pair features (its rows in `cond.items` order),
+/// the MLP over all pairs at once, and the bias regrouped per item and head.
+fn relation_bias(
+    net: &GradNet,
+    p: &[f32],
+    layers: &[LinearAt; 2],
+    cond: &ConditionTape,
+    noisy: &[f32],
+) -> (Vec<f32>, Vec<f32>, Vec<f32>, Vec<Vec<f32>>) {
+    let cfg = &net.cfg;
+    let (k, per_item) = (cfg.max_contacts, cfg.slots() * cfg.token_dim());
+    let mut features = Vec::new();
+    for (item, rows) in cond.items.iter().enumerate() {
+        let poses = relations::poses(
+            cfg,
+            &noisy[item * per_item..(item + 1) * per_item],
+            &cond.contacts[item * k * CONTACT_FEATURES..(item + 1) * k * CONTACT_FEATURES],
+            &cond.mask[item * k..(item + 1) * k],
+            false,
+        );
+        debug_assert_eq!(poses.len(), rows.len());
+        features.extend(relations::pair_features(&poses));
+    }
+    let pre = layers[0].map(p, &features);
+    let act = ops::silu(&pre);
+    let out = layers[1].map(p, &act);
+    let heads = cfg.heads;
+    let mut bias = Vec::with_capacity(cond.items.len() * heads);
+    let mut at = 0;
+    for rows in &cond.items {
+        let pairs = rows.len() * rows.len();
+        for head in 0..heads {
+            bias.push((0..pairs).map(|q| out[(at + q) * heads + head]).collect());
+        }
+        at += pairs;
+    }
+    (features, pre, act, bias)
 }
 
 /// Everything the forward pass of a training chunk computed that its backward pass needs.

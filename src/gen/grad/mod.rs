@@ -18,10 +18,11 @@ mod backward;
 mod forward;
 mod ops;
 
-use super::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES};
+use super::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES, RELATION_HIDDEN};
 use super::dataset::NoisyBatch;
 use super::flat::ParamLayout;
 use super::matmul::LinearAt;
+use super::relations::RELATION_FEATURES;
 use super::{GenError, ModelConfig};
 pub(crate) use forward::ConditionTape;
 use rayon::prelude::*;
@@ -46,6 +47,7 @@ pub struct GradNet {
     params: usize,
     input: LinearAt,
     anchor: Option<LinearAt>,
+    relation: Option<[LinearAt; 2]>,
     time: [LinearAt; 2],
     contact: [LinearAt; 2],
     contact_kind: usize,
@@ -123,6 +125,13 @@ impl GradNet {
             params: layout.len(),
             input: linear("input", cfg.token_dim(), d)?,
             anchor: if cfg.anchor_scale > 0.0 { Some(linear("anchor", CONTACT_FEATURES, d)?) } else { None },
+            relation: match cfg.relation_bias {
+                true => Some([
+                    linear("relation.0", RELATION_FEATURES, RELATION_HIDDEN)?,
+                    linear("relation.1", RELATION_HIDDEN, cfg.heads)?,
+                ]),
+                false => None,
+            },
             time: [linear("time.0", super::config::TIME_FEATURES, d)?, linear("time.1", d, d)?],
             contact: [linear("contact.0", CONTACT_FEATURES, d)?, linear("contact.1", d, d)?],
             contact_kind: find(layout, "contact_kind", &[1, 1, d])?,

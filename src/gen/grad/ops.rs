@@ -208,12 +208,21 @@ pub(super) fn add_gated_backward(
 /// Multi-head self-attention among the rows of each item (`items[i]` lists item i's rows, in
 /// order). `qkv` is rows × 3d (q | k | v, heads within each); returns the output (rows × d) and
 /// each (item, head)'s softmax weights, row-major.
-pub(super) fn attention(qkv: &[f32], items: &[Vec<usize>], heads: usize, d: usize) -> (Vec<f32>, Vec<Vec<f32>>) {
+///
+/// `bias`, when given, is added to the scores: `bias[item * heads + head]` is that item's n × n
+/// matrix (row i: the query, column j: the key), n its number of rows.
+pub(super) fn attention(
+    qkv: &[f32],
+    items: &[Vec<usize>],
+    heads: usize,
+    d: usize,
+    bias: Option<&[Vec<f32>]>,
+) -> (Vec<f32>, Vec<Vec<f32>>) {
     let dh = d / heads;
     let scale = 1.0 / (dh as f32).sqrt();
     let mut out = vec![0f32; qkv.len() / 3];
     let mut probs = Vec::with_capacity(items.len() * heads);
-    for rows in items {
+    for (item, rows) in items.iter().enumerate() {
         let n = rows.len();
         for head in 0..heads {
             let col = |row: usize, part: usize| &qkv[row * 3 * d + part * d + head * dh..][..dh];
@@ -225,6 +234,13 @@ pub(super) fn attention(qkv: &[f32], items: &[Vec<usize>], heads: usize, d: usiz
                 for (w, &rj) in weights.iter_mut().zip(rows) {
                     *w = dot(q, col(rj, 1)) * scale;
                     max = max.max(*w);
+                }
+                if let Some(bias) = bias {
+                    max = f32::NEG_INFINITY;
+                    for (w, b) in weights.iter_mut().zip(&bias[item * heads + head][i * n..(i + 1) * n]) {
+                        *w += b;
+                        max = max.max(*w);
+                    }
                 }
                 let mut total = 0.0;
                 for w in weights.iter_mut() {
@@ -243,7 +259,8 @@ pub(super) fn attention(qkv: &[f32], items: &[Vec<usize>], heads: usize, d: usiz
     (out, probs)
 }
 
-/// Backward of [`attention`]: the gradient of `qkv` for the output gradient `dout`.
+/// Backward of [`attention`]: the gradient of `qkv` for the output gradient `dout`; when `dbias` is
+/// given (laid out like the bias), the scores' gradient is added into it.
 pub(super) fn attention_backward(
     qkv: &[f32],
     probs: &[Vec<f32>],
@@ -251,6 +268,7 @@ pub(super) fn attention_backward(
     heads: usize,
     d: usize,
     dout: &[f32],
+    mut dbias: Option<&mut [Vec<f32>]>,
 ) -> Vec<f32> {
     let dh = d / heads;
     let scale = 1.0 / (dh as f32).sqrt();
@@ -273,6 +291,12 @@ pub(super) fn attention_backward(
                 }
                 // dS_ij = P_ij (dP_ij − Σ_k P_ik dP_ik), then through S = q·k · scale.
                 let inner = dot(pi, &dp);
+                if let Some(dbias) = dbias.as_deref_mut() {
+                    let row = &mut dbias[item * heads + head][i * n..(i + 1) * n];
+                    for ((b, &w), &g) in row.iter_mut().zip(pi).zip(&dp) {
+                        *b += w * (g - inner);
+                    }
+                }
                 for ((&w, &g), &rj) in pi.iter().zip(&dp).zip(rows) {
                     let ds = w * (g - inner) * scale;
                     if ds == 0.0 {
@@ -325,14 +349,36 @@ mod tests {
         let items = vec![vec![0, 1, 4], vec![2, 3]];
         let qkv: Vec<f32> = (0..5 * 12).map(|i| ((i * 37 % 23) as f32 / 11.0) - 1.0).collect();
         let r: Vec<f32> = (0..5 * 4).map(|i| ((i * 13 % 7) as f32 / 3.0) - 1.0).collect();
-        let (_, probs) = attention(&qkv, &items, 2, 4);
-        assert!(
-            probs.iter().all(|p| p.chunks(p.len().isqrt()).all(|row| (row.iter().sum::<f32>() - 1.0).abs() < 1e-6))
-        );
-        let grad = attention_backward(&qkv, &probs, &items, 2, 4, &r);
-        for (i, g) in grad.iter().enumerate() {
-            let n = numeric(|q| loss(&attention(q, &items, 2, 4).0, &r), &qkv, i);
-            assert!((n - *g as f64).abs() < 2e-3, "{i}: {n} vs {g}");
+        // A bias per item and head (n × n), of mixed signs.
+        let bias: Vec<Vec<f32>> = [3usize, 3, 2, 2]
+            .iter()
+            .enumerate()
+            .map(|(k, &n)| (0..n * n).map(|i| ((i * 7 + k * 3) % 5) as f32 / 2.0 - 1.0).collect())
+            .collect();
+        for bias in [None, Some(&bias[..])] {
+            let (_, probs) = attention(&qkv, &items, 2, 4, bias);
+            assert!(
+                probs.iter().all(|p| p.chunks(p.len().isqrt()).all(|row| (row.iter().sum::<f32>() - 1.0).abs() < 1e-6))
+            );
+            let mut dbias: Vec<Vec<f32>> = bias.iter().flat_map(|b| b.iter().map(|m| vec![0.0; m.len()])).collect();
+            let grad = attention_backward(&qkv, &probs, &items, 2, 4, &r, bias.map(|_| &mut dbias[..]));
+            for (i, g) in grad.iter().enumerate() {
+                let n = numeric(|q| loss(&attention(q, &items, 2, 4, bias).0, &r), &qkv, i);
+                assert!((n - *g as f64).abs() < 2e-3, "{i}: {n} vs {g}");
+            }
+            if let Some(bias) = bias {
+                for (m, row) in dbias.iter().enumerate() {
+                    for (i, g) in row.iter().enumerate() {
+                        let f = |b: &[f32]| {
+                            let mut all = bias.to_vec();
+                            all[m] = b.to_vec();
+                            loss(&attention(&qkv, &items, 2, 4, Some(&all)).0, &r)
+                        };
+                        let n = numeric(f, &bias[m], i);
+                        assert!((n - *g as f64).abs() < 2e-3, "bias {m} {i}: {n} vs {g}");
+                    }
+                }
+            }
         }
     }
 

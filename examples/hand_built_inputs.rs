@@ -1,0 +1,121 @@
+//! Writes the hand-built generation inputs in `tests/inputs/` — rooms and motions made by hand,
+//! unlike the procedural training data: a tight bedroom, a walker close behind a person seated at a
+//! desk, a walker through the middle of a living room, three sitters side by side as on one sofa,
+//! a dining room with sitters on both sides of one table.
+//!
+//! ```sh
+//! cargo run --release --example hand_built_inputs -- tests/inputs
+//! ```
+//!
+//! The files are committed; this program is how they were made (deterministic).
+
+use glam::DVec2;
+use shade_sim::geom::Polyline;
+use shade_sim::human::{Body, Motion, sit, stand};
+use shade_sim::scene::{Action, FloorPlan, Human, RoomType, Scene};
+use std::path::PathBuf;
+
+const FPS: f64 = 10.0;
+
+fn rect(w: f64, d: f64) -> FloorPlan {
+    FloorPlan { polygon: vec![[0.0, 0.0], [w, 0.0], [w, d], [0.0, d]], height: 2.6 }
+}
+
+fn sitter(id: &str, at: [f64; 2], seat: f64, yaw_deg: f64) -> Human {
+    let body = Body::new(1.72);
+    let pose = sit(&body, DVec2::from(at), seat, yaw_deg.to_radians());
+    let mut m = Motion::new(body, FPS);
+    m.hold(pose, 20, Action::Sit);
+    m.into_human(id)
+}
+
+fn walker(id: &str, path: &[[f64; 2]]) -> Human {
+    let body = Body::new(1.75);
+    let line = Polyline::new(path.iter().map(|&p| DVec2::from(p)).collect()).expect("a path of two points or more");
+    let mut m = Motion::new(body, FPS);
+    m.walk(&line, 1.1);
+    m.into_human(id)
+}
+
+fn stander(id: &str, at: [f64; 2], yaw_deg: f64) -> Human {
+    let body = Body::new(1.68);
+    let mut m = Motion::new(body, FPS);
+    m.hold(stand(&body, DVec2::from(at), yaw_deg.to_radians()), 20, Action::Stand);
+    m.into_human(id)
+}
+
+fn scene(room_type: RoomType, floor_plan: FloorPlan, humans: Vec<Human>) -> Scene {
+    Scene { format: shade_sim::scene::FORMAT.into(), room_type, floor_plan, objects: Vec::new(), humans }
+}
+
+fn main() -> anyhow::Result<()> {
+    let out = PathBuf::from(std::env::args().nth(1).unwrap_or_else(|| "tests/inputs".into()));
+    std::fs::create_dir_all(&out)?;
+    let inputs = [
+        // 2.6 × 2.8 m: a sleeper-less bedroom with one sitter facing the wall (a desk) and a walker
+        // from the door to the window.
+        (
+            "tight_bedroom",
+            scene(
+                RoomType::Bedroom,
+                rect(2.6, 2.8),
+                vec![sitter("desk", [2.0, 2.25], 0.46, 90.0), walker("door", &[[0.4, 0.3], [0.6, 2.4]])],
+            ),
+        ),
+        // A person seated at a desk against the top wall, a walker passing about 30 cm behind them.
+        (
+            "walker_behind_sitter",
+            scene(
+                RoomType::Bedroom,
+                rect(3.6, 3.4),
+                vec![sitter("desk", [1.8, 2.75], 0.46, 90.0), walker("behind", &[[0.3, 1.95], [3.3, 1.95]])],
+            ),
+        ),
+        // A living room crossed diagonally through its middle, with one sitter by a wall.
+        (
+            "walker_through_middle",
+            scene(
+                RoomType::Living,
+                rect(5.0, 4.2),
+                vec![sitter("reader", [0.55, 2.1], 0.44, 0.0), walker("cross", &[[1.2, 0.3], [4.6, 3.9]])],
+            ),
+        ),
+        // Three sitters shoulder to shoulder facing a wall (one sofa's worth) and a stander.
+        (
+            "three_on_a_sofa",
+            scene(
+                RoomType::Living,
+                rect(4.8, 4.0),
+                vec![
+                    sitter("left", [1.75, 0.55], 0.43, 90.0),
+                    sitter("middle", [2.4, 0.55], 0.43, 90.0),
+                    sitter("right", [3.05, 0.55], 0.43, 90.0),
+                    stander("host", [3.9, 2.8], -90.0),
+                ],
+            ),
+        ),
+        // Two sitters across from each other and one at the head: one table between them.
+        (
+            "dinner_for_three",
+            scene(
+                RoomType::Dining,
+                rect(4.2, 3.6),
+                vec![
+                    sitter("north", [2.1, 2.35], 0.46, -90.0),
+                    sitter("south", [2.1, 1.25], 0.46, 90.0),
+                    sitter("head", [1.2, 1.8], 0.46, 0.0),
+                    walker("serve", &[[3.8, 0.4], [3.8, 3.2]]),
+                ],
+            ),
+        ),
+    ];
+    for (name, s) in inputs {
+        if let Some(problem) = shade_sim::scene::validate(&s).first() {
+            anyhow::bail!("{name}: {problem:?}");
+        }
+        let path = out.join(format!("{name}.json"));
+        s.save(&path)?;
+        println!("{}", path.display());
+    }
+    Ok(())
+}
