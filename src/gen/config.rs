@@ -51,6 +51,22 @@ pub struct ModelConfig {
     /// and yaw of one in the other's frame, distance; [`super::relations`]). Off in older configs.
     #[serde(default)]
     pub relation_bias: bool,
+    /// What the denoiser predicts: the noise ε (DDPM's choice, every model before it) or the clean
+    /// tokens x₀. Older configs read as ε.
+    #[serde(default)]
+    pub prediction: Prediction,
+}
+
+/// The denoiser's output.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Prediction {
+    /// The noise ε; x̂₀ = (x_t − √(1 − ᾱ_t) ε̂) / √ᾱ_t. Its x̂₀ at the last steps is only as
+    /// precise as ε̂ times √(1 − ᾱ_t) / √ᾱ_t allows (docs/RESULTS.md, "x₀-prediction").
+    #[default]
+    Epsilon,
+    /// The clean tokens x₀ themselves (the loss is then on x₀, with the same weights).
+    X0,
 }
 
 impl ModelConfig {
@@ -69,7 +85,8 @@ impl ModelConfig {
             free_points: 64,
             diffusion_steps: 200,
             anchor_scale: Self::ANCHOR_SCALE,
-            relation_bias: true,
+            relation_bias: false,
+            prediction: Prediction::X0,
         }
     }
 
@@ -95,6 +112,7 @@ impl ModelConfig {
             diffusion_steps: 200,
             anchor_scale: Self::ANCHOR_SCALE,
             relation_bias: true,
+            prediction: Prediction::X0,
         }
     }
 

@@ -3,7 +3,7 @@
 
 use super::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES};
 use super::model::CondTensors;
-use super::{Bounds, Dihedral, Features, GenError, ModelConfig, Schedule, anchors, tokens};
+use super::{Bounds, Dihedral, Features, GenError, ModelConfig, Prediction, Schedule, anchors, tokens};
 use crate::data::{DataError, Rng};
 use crate::geom::OBox;
 use crate::human::Conditions;
@@ -170,6 +170,8 @@ pub struct NoisyBatch {
     pub t: Vec<usize>,
     /// ε, laid out like the tokens.
     pub noise: Vec<f32>,
+    /// What the denoiser must output: ε, or the clean tokens (in the model's frame) for an x₀ model.
+    pub target: Vec<f32>,
     /// x_t = √ᾱ_t x₀ + √(1 − ᾱ_t) ε.
     pub noisy: Vec<f32>,
 }
@@ -190,7 +192,11 @@ impl NoisyBatch {
                 (ab.sqrt() as f32) * x0 + ((1.0 - ab).sqrt() as f32) * n
             })
             .collect();
-        NoisyBatch { host, t, noise, noisy }
+        let target = match cfg.prediction {
+            Prediction::Epsilon => noise.clone(),
+            Prediction::X0 => host.tokens.clone(),
+        };
+        NoisyBatch { host, t, noise, target, noisy }
     }
 
     /// The loss's denominator: the sum of the loss weights, at least 1.
@@ -252,5 +258,26 @@ mod tests {
         // The cap.
         balance_categories(&mut weighted, 3.0, &cfg);
         assert_eq!(weighted[0].weights[3 * dim], 3.0 * MAX_CATEGORY_WEIGHT);
+    }
+
+    #[test]
+    fn the_target_is_the_noise_or_the_clean_tokens_and_the_noisy_tokens_mix_them() {
+        let scene = generate_room(RoomType::Bedroom, 3, 1, false).scene;
+        let mut stats = SplitStats::default();
+        stats.add(&scene);
+        let bounds = Bounds::from_stats(&stats);
+        for prediction in [Prediction::Epsilon, Prediction::X0] {
+            let cfg = ModelConfig { prediction, ..ModelConfig::tiny(RoomType::Bedroom) };
+            let mut host = HostBatch::default();
+            host.push(&Example::of(&scene, &bounds, &cfg), &cfg);
+            let schedule = Schedule::linear(cfg.diffusion_steps);
+            let b = NoisyBatch::draw(host, &schedule, &mut Rng::new(2), &cfg);
+            let want = if prediction == Prediction::X0 { &b.host.tokens } else { &b.noise };
+            assert_eq!(&b.target, want);
+            let ab = schedule.alpha_bars[b.t[0]] as f32;
+            for ((x, x0), n) in b.noisy.iter().zip(&b.host.tokens).zip(&b.noise) {
+                assert!((x - (ab.sqrt() * x0 + (1.0 - ab).sqrt() * n)).abs() < 1e-5);
+            }
+        }
     }
 }

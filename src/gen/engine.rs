@@ -96,7 +96,7 @@ impl CandleGradients {
         let (cfg, host) = (&self.cfg, &batch.host);
         let pred = self.model.forward(&host.token_tensor(&batch.noisy, cfg)?, &batch.t, &host.cond(cfg)?)?;
         let weights = host.token_tensor(&host.weights, cfg)?;
-        let err = (pred - host.token_tensor(&batch.noise, cfg)?)?.sqr()?;
+        let err = (pred - host.token_tensor(&batch.target, cfg)?)?.sqr()?;
         Ok(((err * weights)?.sum_all()? / batch.weight_total() as f64)?)
     }
 

@@ -72,8 +72,8 @@ impl FastDenoiser {
         Ok(PreparedBatch { chunks, items })
     }
 
-    /// Predicted noise (B × slots × token_dim) for noisy tokens `x` (B × slots × token_dim), every
-    /// item at step `t`.
+    /// The denoiser's output (B × slots × token_dim: ε or x₀, as the config's `prediction` says)
+    /// for noisy tokens `x` (B × slots × token_dim), every item at step `t`.
     pub fn forward(&self, batch: &mut PreparedBatch, x: &[f32], t: usize) -> Vec<f32> {
         let cfg = self.config();
         let per_item = cfg.slots() * cfg.token_dim();

@@ -32,7 +32,7 @@ pub mod train;
 
 pub use adamw::{AdamW, AdamWConfig};
 pub use checkpoint::{Checkpoint, CheckpointMeta, TrainingInfo};
-pub use config::ModelConfig;
+pub use config::{ModelConfig, Prediction};
 pub use dataset::{Example, HostBatch, NoisyBatch, load_split, split_files};
 pub use engine::{Engine, Gradients};
 pub use error::GenError;

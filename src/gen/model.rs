@@ -176,7 +176,7 @@ impl Denoiser {
         &self.cfg
     }
 
-    /// Predicted noise (B, S, token_dim) for noisy tokens `x` (B, S, token_dim) at steps `t`.
+    /// The output (B, S, token_dim: ε or x₀, as the config's `prediction` says) for noisy tokens `x` (B, S, token_dim) at steps `t`.
     pub fn forward(&self, x: &Tensor, t: &[usize], cond: &CondTensors) -> Result<Tensor, GenError> {
         let (b, slots, _) = x.dims3()?;
         let time = self.time[1].forward(&self.time[0].forward(&time_features(t, x.device())?)?.silu()?)?;

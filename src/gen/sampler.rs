@@ -9,7 +9,7 @@
 
 use super::model::CondTensors;
 use super::tokens::{CLASS_OFFSET, slot_class};
-use super::{Denoiser, FastDenoiser, GenError, Schedule, anchors};
+use super::{Denoiser, FastDenoiser, GenError, Prediction, Schedule, anchors};
 use crate::data::Rng;
 use candle_core::{Device, Tensor};
 
@@ -63,9 +63,13 @@ pub fn sample(
     let mut prepared = fast.prepare(cond)?;
     let mut x = gaussian(&mut rngs)?;
     for t in (0..schedule.steps()).rev() {
-        let eps = Tensor::from_vec(fast.forward(&mut prepared, &x.flatten_all()?.to_vec1()?, t), shape, &Device::Cpu)?;
+        let out = Tensor::from_vec(fast.forward(&mut prepared, &x.flatten_all()?.to_vec1()?, t), shape, &Device::Cpu)?;
         let ab = schedule.alpha_bars[t];
-        let x0 = ((&x - (eps * (1.0 - ab).sqrt())?)? / ab.sqrt())?.clamp(-1f32, 1f32)?;
+        let x0 = match cfg.prediction {
+            Prediction::Epsilon => ((&x - (out * (1.0 - ab).sqrt())?)? / ab.sqrt())?,
+            Prediction::X0 => out,
+        }
+        .clamp(-1f32, 1f32)?;
         let x0 = if t < projection_steps { zero_empty_attributes(&x0, cfg)? } else { x0 };
         let x0 = match guidance.as_deref_mut() {
             Some(g) => frame(&g.guide(&frame(&x0, false)?, t)?, true)?,

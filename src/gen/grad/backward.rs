@@ -16,7 +16,7 @@ pub(super) fn run(net: &GradNet, p: &[f32], tape: &Tape, inp: &ChunkInputs, tota
     let row_item = &cond.row_item;
 
     let dout: Vec<f32> =
-        step.out.iter().zip(inp.noise).zip(inp.weights).map(|((o, n), w)| 2.0 * w * (o - n) / total).collect();
+        step.out.iter().zip(inp.target).zip(inp.weights).map(|((o, n), w)| 2.0 * w * (o - n) / total).collect();
     let mut dfinal = vec![0f32; objects * d];
     net.output.backward(p, g, &step.final_m, &dout, Some(&mut dfinal));
     let mut dmod: Vec<Vec<f32>> = step.modulation.iter().map(|m| vec![0f32; m.len()]).collect();

@@ -322,13 +322,13 @@ impl Tape {
         Tape { cond, step }
     }
 
-    /// This chunk's share of the batch loss Σ w (ε̂ − ε)² / `total`.
+    /// This chunk's share of the batch loss Σ w (output − target)² / `total`.
     pub(super) fn loss(&self, inp: &ChunkInputs, total: f32) -> f64 {
         let sum: f64 = self
             .step
             .out
             .iter()
-            .zip(inp.noise)
+            .zip(inp.target)
             .zip(inp.weights)
             .map(|((o, n), w)| (w * (o - n) * (o - n)) as f64)
             .sum();

@@ -88,7 +88,7 @@ struct ChunkInputs<'a> {
     cond: ConditionInputs<'a>,
     t: &'a [usize],
     noisy: &'a [f32],
-    noise: &'a [f32],
+    target: &'a [f32],
     weights: &'a [f32],
 }
 
@@ -188,7 +188,7 @@ impl GradNet {
                     cond: ConditionInputs::span(cfg, conditions, start, end),
                     t: &batch.t[start..end],
                     noisy: span(&batch.noisy, per_item),
-                    noise: span(&batch.noise, per_item),
+                    target: span(&batch.target, per_item),
                     weights: span(&host.weights, per_item),
                 }
             })
