@@ -42,6 +42,11 @@ pub struct GuidanceConfig {
     pub scale: f64,
     /// Guide only at steps t < `until_step` (steps count down from T − 1 to 0).
     pub until_step: usize,
+    /// Share of its step a piece in an anchored slot takes (the piece serving a contact box, whose
+    /// person holds it in place; 1 = like any piece, 0 = not moved). Only models with anchored
+    /// slots have such pieces.
+    #[serde(default = "GuidanceConfig::default_anchored_mobility")]
+    pub anchored_mobility: f64,
     /// Weight of the physics-feedback displacements (J_phys; 0 = off).
     #[serde(default)]
     pub phys: f64,
@@ -62,10 +67,19 @@ impl GuidanceConfig {
             object: 1.0,
             scale: 0.1,
             until_step: 100,
+            anchored_mobility: Self::ANCHORED_MOBILITY,
             phys: 0.0,
             phys_until: 20,
             phys_every: 4,
         }
+    }
+
+    /// The default [`anchored_mobility`](Self::anchored_mobility), chosen on the val splits
+    /// (docs/RESULTS.md, "Guidance and anchored pieces").
+    pub const ANCHORED_MOBILITY: f64 = 0.0;
+
+    fn default_anchored_mobility() -> f64 {
+        Self::ANCHORED_MOBILITY
     }
 
     /// The weight `phys` takes when the term is asked for.
@@ -316,6 +330,8 @@ pub struct SpatialGuidance {
     bounds: Bounds,
     masks: Vec<SceneMasks>,
     ceilings: Vec<f64>,
+    /// Per item: how many of its first slots are anchored to contact boxes.
+    anchored: Vec<usize>,
     /// Weighted J summed over the batch at each guided step (for inspection and tests).
     pub history: Vec<(usize, f64)>,
 }
@@ -329,6 +345,13 @@ impl SpatialGuidance {
             bounds: bounds.clone(),
             masks: scenes.iter().map(|s| SceneMasks::of(s)).collect(),
             ceilings: scenes.iter().map(|s| s.floor_plan.height).collect(),
+            anchored: scenes
+                .iter()
+                .map(|s| match model.anchor_scale > 0.0 {
+                    true => Conditions::contact_boxes_of(s).len().min(model.max_contacts),
+                    false => 0,
+                })
+                .collect(),
             history: Vec::new(),
         }
     }
@@ -346,8 +369,8 @@ impl Guidance for SpatialGuidance {
         let (model, bounds, cfg) = (&self.model, &self.bounds, &self.cfg);
         let total: f64 = v
             .par_chunks_exact_mut(per_item)
-            .zip(self.masks.par_iter().zip(&self.ceilings))
-            .map(|(tokens, (masks, &ceiling))| {
+            .zip(self.masks.par_iter().zip(&self.ceilings).zip(&self.anchored))
+            .map(|(tokens, ((masks, &ceiling), &anchored))| {
                 let decoded = decode_slots(tokens, masks.window.center, ceiling, bounds, model);
                 let slots: Vec<usize> = decoded.iter().map(|(slot, _)| *slot).collect();
                 let objects: Vec<GuidedObject> = decoded.iter().map(|(_, o)| GuidedObject::of(o)).collect();
@@ -355,8 +378,9 @@ impl Guidance for SpatialGuidance {
                 for (&slot, g) in slots.iter().zip(&grads) {
                     let t = &mut tokens[slot * dim..(slot + 1) * dim];
                     let step = token_gradient(t, g, bounds);
+                    let scale = if slot < anchored { cfg.scale * cfg.anchored_mobility } else { cfg.scale };
                     for (x, s) in t.iter_mut().zip(step) {
-                        *x = (*x - (cfg.scale * s) as f32).clamp(-1.0, 1.0);
+                        *x = (*x - (scale * s) as f32).clamp(-1.0, 1.0);
                     }
                 }
                 j
@@ -509,7 +533,8 @@ mod batch_tests {
     #[test]
     fn guiding_a_batch_moves_an_object_back_inside_the_room() {
         let mut scene = generate_room(RoomType::Bedroom, 2, 1, false).scene;
-        let cfg = ModelConfig::tiny(RoomType::Bedroom);
+        // Free slots only: a piece in an anchored slot is held by its person (below).
+        let cfg = ModelConfig { anchor_scale: 0.0, ..ModelConfig::tiny(RoomType::Bedroom) };
         let mut stats = SplitStats::default();
         stats.add(&scene);
         let bounds = Bounds::from_stats(&stats);
@@ -536,5 +561,15 @@ mod batch_tests {
         let mut late = SpatialGuidance::new(GuidanceConfig::all(), &cfg, &bounds, &[&scene]);
         let same = late.guide(&x0, 150).unwrap().flatten_all().unwrap().to_vec1::<f32>().unwrap();
         assert_eq!(same, tok);
+        // With anchored slots, the scene's contact boxes hold the first slots: at mobility 0 the
+        // piece in slot 0 stays through the wall, at mobility 1 it is moved like a free one.
+        let anchored = ModelConfig::tiny(RoomType::Bedroom);
+        assert!(!Conditions::contact_boxes_of(&scene).is_empty(), "the scene has a contact box");
+        for (mobility, moves) in [(0.0, false), (1.0, true)] {
+            let cfg_g = GuidanceConfig { anchored_mobility: mobility, ..GuidanceConfig::all() };
+            let mut g = SpatialGuidance::new(cfg_g, &anchored, &bounds, &[&scene]);
+            let out = g.guide(&x0, 10).unwrap().flatten_all().unwrap().to_vec1::<f32>().unwrap();
+            assert_eq!(out[..8] != tok[..8], moves, "mobility {mobility}");
+        }
     }
 }
