@@ -130,6 +130,12 @@ impl ModelConfig {
         self.room_type.max_objects()
     }
 
+    /// How many of the first slots are anchored for a scene with `boxes` contact boxes (0 without
+    /// anchored slots; boxes beyond `max_contacts` are not read).
+    pub fn anchored_slots(&self, boxes: usize) -> usize {
+        if self.anchor_scale > 0.0 { boxes.min(self.max_contacts) } else { 0 }
+    }
+
     /// Classes including the final "empty" class.
     pub fn classes(&self) -> usize {
         self.room_type.categories().len() + 1

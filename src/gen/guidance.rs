@@ -345,13 +345,7 @@ impl SpatialGuidance {
             bounds: bounds.clone(),
             masks: scenes.iter().map(|s| SceneMasks::of(s)).collect(),
             ceilings: scenes.iter().map(|s| s.floor_plan.height).collect(),
-            anchored: scenes
-                .iter()
-                .map(|s| match model.anchor_scale > 0.0 {
-                    true => Conditions::contact_boxes_of(s).len().min(model.max_contacts),
-                    false => 0,
-                })
-                .collect(),
+            anchored: scenes.iter().map(|s| model.anchored_slots(Conditions::contact_boxes_of(s).len())).collect(),
             history: Vec::new(),
         }
     }

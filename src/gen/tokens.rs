@@ -104,16 +104,14 @@ pub fn encode(
         .filter_map(|o| categories.iter().position(|&c| c == o.category).map(|class| (class, o)))
         .collect();
     let mut order: Vec<Option<usize>> = Vec::new();
-    if cfg.anchor_scale > 0.0 {
-        for b in contact_boxes.iter().take(cfg.max_contacts) {
-            let serving = known
-                .iter()
-                .enumerate()
-                .map(|(i, (_, o))| (i, contact_iou(b, std::slice::from_ref(o))))
-                .filter(|(_, v)| *v > 0.0)
-                .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)));
-            order.push(serving.map(|(i, _)| i));
-        }
+    for b in &contact_boxes[..cfg.anchored_slots(contact_boxes.len())] {
+        let serving = known
+            .iter()
+            .enumerate()
+            .map(|(i, (_, o))| (i, contact_iou(b, std::slice::from_ref(o))))
+            .filter(|(_, v)| *v > 0.0)
+            .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)));
+        order.push(serving.map(|(i, _)| i));
     }
     let free: Vec<Option<usize>> = (0..known.len()).filter(|i| !order.contains(&Some(*i))).map(Some).collect();
     order.extend(free);
