@@ -9,7 +9,9 @@ use indicatif::ProgressBar;
 use shade_sim::data::read_stats;
 use shade_sim::export::{LossPoint, render_loss_png};
 use shade_sim::generator::train::LogLine;
-use shade_sim::generator::{Engine, GenError, ModelConfig, TrainObserver, TrainOptions, train};
+use shade_sim::generator::{
+    Engine, GenError, ModelConfig, NoiseSchedule, Prediction, TrainObserver, TrainOptions, train,
+};
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -35,6 +37,12 @@ pub struct TrainArgs {
     /// Model size: small (shipped) or tiny (tests).
     #[arg(long, default_value = "small")]
     pub preset: String,
+    /// What the denoiser predicts: eps, x0 or v (default: the preset's, x0 for small and tiny).
+    #[arg(long, value_parser = parse_prediction)]
+    pub prediction: Option<Prediction>,
+    /// The noise schedule: linear or log_snr (default: the preset's).
+    #[arg(long, value_parser = parse_schedule)]
+    pub schedule: Option<NoiseSchedule>,
     /// Seed of initialisation, batches and noise.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
@@ -58,6 +66,23 @@ pub struct TrainArgs {
     /// slower reference it is tested against).
     #[arg(long, default_value = "fused")]
     pub engine: Engine,
+}
+
+fn parse_prediction(s: &str) -> Result<Prediction, String> {
+    match s {
+        "eps" | "epsilon" => Ok(Prediction::Epsilon),
+        "x0" => Ok(Prediction::X0),
+        "v" => Ok(Prediction::V),
+        other => Err(format!("unknown prediction {other:?} (eps, x0, v)")),
+    }
+}
+
+fn parse_schedule(s: &str) -> Result<NoiseSchedule, String> {
+    match s {
+        "linear" => Ok(NoiseSchedule::Linear),
+        "log_snr" => Ok(NoiseSchedule::LogSnr),
+        other => Err(format!("unknown schedule {other:?} (linear, log_snr)")),
+    }
 }
 
 /// The progress bar, and the model folder where each checkpoint's `loss.png` goes.
@@ -87,8 +112,14 @@ impl TrainObserver for Bar {
 
 pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     let stats = read_stats(&args.data)?;
-    let model = ModelConfig::preset(&args.preset, stats.room_type)
+    let mut model = ModelConfig::preset(&args.preset, stats.room_type)
         .ok_or_else(|| anyhow::anyhow!("--preset: unknown preset {:?} (small, tiny)", args.preset))?;
+    if let Some(prediction) = args.prediction {
+        model.prediction = prediction;
+    }
+    if let Some(schedule) = args.schedule {
+        model.schedule = schedule;
+    }
     let state = args.out.join(shade_sim::generator::checkpoint::STATE_META_FILE);
     anyhow::ensure!(
         args.resume || !state.exists(),

@@ -4,8 +4,8 @@
 //! With `anchor_scale > 0` (see [`ModelConfig::anchor_scale`]), slot k of a scene that has contact
 //! box k holds the piece that serves that box ([`super::tokens::encode`] puts it there), and the
 //! model works on that slot in the box's frame: its centre as the offset from the box centre,
-//! rotated into the box's frame and divided by `anchor_scale`, and its yaw relative to the box's
-//! yaw. Height, size and classes stay as they are. A chair under a sitter is then "offset ≈ 0,
+//! rotated into the box's frame and divided by `anchor_scale`, and (with `anchored_yaw: box`, the
+//! first anchored models) its yaw relative to the box's yaw, else its world yaw. Height, size and classes stay as they are. A chair under a sitter is then "offset ≈ 0,
 //! relative yaw ≈ 0" in every room, wherever the sitter is, and the noise of a diffusion step moves
 //! it by `anchor_scale` as much as it moves a free slot.
 //!
@@ -14,7 +14,7 @@
 //! in place. Slots without a box (k ≥ the scene's boxes, or anchoring off) are left alone.
 
 use super::ModelConfig;
-use super::config::CONTACT_FEATURES;
+use super::config::{AnchoredYaw, CONTACT_FEATURES};
 
 /// One anchored slot's box: centre (token units, relative to the window centre) and yaw.
 #[derive(Debug, Clone, Copy)]
@@ -61,10 +61,14 @@ fn convert(cfg: &ModelConfig, contacts: &[f32], mask: &[f32], tokens: &mut [f32]
         let features = &contacts[item * k * CONTACT_FEATURES..(item + 1) * k * CONTACT_FEATURES];
         for (slot, a) in anchors(cfg, features, &mask[item * k..(item + 1) * k]) {
             let t = &mut tokens[slot * dim..(slot + 1) * dim];
+            let turn_yaw = cfg.anchored_yaw == AnchoredYaw::Box;
             if into_model {
                 let (dx, dy) = (t[0] - a.x, t[1] - a.y);
                 t[0] = (a.cos * dx + a.sin * dy) / scale;
                 t[1] = (-a.sin * dx + a.cos * dy) / scale;
+                if !turn_yaw {
+                    continue;
+                }
                 let (c, s) = (t[6], t[7]);
                 t[6] = a.cos * c + a.sin * s;
                 t[7] = -a.sin * c + a.cos * s;
@@ -72,6 +76,9 @@ fn convert(cfg: &ModelConfig, contacts: &[f32], mask: &[f32], tokens: &mut [f32]
                 let (u, v) = (t[0] * scale, t[1] * scale);
                 t[0] = a.x + a.cos * u - a.sin * v;
                 t[1] = a.y + a.sin * u + a.cos * v;
+                if !turn_yaw {
+                    continue;
+                }
                 let (c, s) = (t[6], t[7]);
                 t[6] = a.cos * c - a.sin * s;
                 t[7] = a.sin * c + a.cos * s;
@@ -86,7 +93,7 @@ mod tests {
     use crate::scene::RoomType;
 
     fn cfg() -> ModelConfig {
-        ModelConfig { anchor_scale: 0.4, ..ModelConfig::tiny(RoomType::Bedroom) }
+        ModelConfig { anchor_scale: 0.4, anchored_yaw: AnchoredYaw::Box, ..ModelConfig::tiny(RoomType::Bedroom) }
     }
 
     /// Two items; item 0 has boxes in slots 0 and 1, item 1 none.
@@ -120,6 +127,24 @@ mod tests {
         assert!((tokens[dim] - 0.3 / 0.4).abs() < 1e-6 && (tokens[dim + 1] + 0.1 / 0.4).abs() < 1e-6);
         // Slots without a box and the second item (no boxes) are untouched.
         assert_eq!(tokens[2 * dim..], world[2 * dim..]);
+        to_world(&cfg, &contacts, &mask, &mut tokens);
+        for (a, b) in tokens.iter().zip(&world) {
+            assert!((a - b).abs() < 1e-6);
+        }
+    }
+
+    #[test]
+    fn a_world_yaw_stays_as_it_is_while_the_offset_turns() {
+        let cfg = ModelConfig { anchored_yaw: AnchoredYaw::World, ..cfg() };
+        let (contacts, mask) = boxes(&cfg);
+        let mut tokens = vec![0f32; 2 * cfg.slots() * cfg.token_dim()];
+        tokens[..8].copy_from_slice(&[0.5, 0.0, 0.3, 0.1, 0.2, 0.3, -1.0, 0.0]);
+        let world = tokens.clone();
+        to_model(&cfg, &contacts, &mask, &mut tokens);
+        let want = [0.5, 0.0, 0.3, 0.1, 0.2, 0.3, -1.0, 0.0];
+        for (got, want) in tokens[..8].iter().zip(want) {
+            assert!((got - want).abs() < 1e-6, "{:?}", &tokens[..8]);
+        }
         to_world(&cfg, &contacts, &mask, &mut tokens);
         for (a, b) in tokens.iter().zip(&world) {
             assert!((a - b).abs() < 1e-6);

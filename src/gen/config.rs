@@ -47,14 +47,57 @@ pub struct ModelConfig {
     /// slot free, as in the models shipped before it; older configs read as 0).
     #[serde(default)]
     pub anchor_scale: f64,
+    /// How an anchored slot's yaw is given: relative to its box's yaw (the first anchored models;
+    /// older configs read so) or in the world, like every other slot's.
+    #[serde(default)]
+    pub anchored_yaw: AnchoredYaw,
     /// Whether every attention score gets a learned bias from the two tokens' relation (position
     /// and yaw of one in the other's frame, distance; [`super::relations`]). Off in older configs.
     #[serde(default)]
     pub relation_bias: bool,
+    /// Whether every object token gets an embedding of its centre's distances to the walls along
+    /// its own axes, measured on the noisy tokens and the floor-plan points ([`super::walls`]).
+    /// Off in older configs.
+    #[serde(default)]
+    pub wall_features: bool,
     /// What the denoiser predicts: the noise ε (DDPM's choice, every model before it) or the clean
     /// tokens x₀. Older configs read as ε.
     #[serde(default)]
     pub prediction: Prediction,
+    /// The noise schedule ([`super::Schedule::of`]). Older configs read as linear.
+    #[serde(default)]
+    pub schedule: NoiseSchedule,
+}
+
+/// Which noise levels the T steps visit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum NoiseSchedule {
+    /// DDPM's linear betas rescaled to T: the least noise, at step 0, is already σ ≈ 0.022 token
+    /// units (6 cm in a bedroom), and only a couple of steps lie below 10 cm.
+    #[default]
+    Linear,
+    /// log(ᾱ / (1 − ᾱ)) falling linearly from σ = [`LOG_SNR_SIGMA_MIN`] at step 0 to the linear
+    /// schedule's ᾱ at step T − 1: a third of the steps lie below 3 cm of noise, where a layout's
+    /// last centimetres are decided.
+    LogSnr,
+}
+
+/// The least noise of the [`NoiseSchedule::LogSnr`] schedule, in token units (8 mm in a bedroom).
+pub const LOG_SNR_SIGMA_MIN: f64 = 0.003;
+
+/// The frame of an anchored slot's yaw.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AnchoredYaw {
+    /// Relative to the box's yaw. People lie and sit at any small angle to the piece under them,
+    /// so the relative yaw of a bed varies where its world yaw is square to the walls: sampled
+    /// beds were 6° off square (median, 17° at the 90th percentile) and their corners went
+    /// through the walls (docs/RESULTS.md, "Anchored yaw").
+    #[default]
+    Box,
+    /// In the world, as in free slots (the box's yaw still orients the centre's offset).
+    World,
 }
 
 /// The denoiser's output.
@@ -67,6 +110,10 @@ pub enum Prediction {
     Epsilon,
     /// The clean tokens x₀ themselves (the loss is then on x₀, with the same weights).
     X0,
+    /// The velocity v = √ᾱ_t ε − √(1 − ᾱ_t) x₀; x̂₀ = √ᾱ_t x_t − √(1 − ᾱ_t) v̂. At low noise x̂₀
+    /// is then x_t plus a small correction (a skip connection the x₀ output lacks); at high noise
+    /// it is the network's own estimate.
+    V,
 }
 
 impl ModelConfig {
@@ -85,8 +132,11 @@ impl ModelConfig {
             free_points: 64,
             diffusion_steps: 200,
             anchor_scale: Self::ANCHOR_SCALE,
+            anchored_yaw: AnchoredYaw::World,
             relation_bias: false,
+            wall_features: true,
             prediction: Prediction::X0,
+            schedule: NoiseSchedule::Linear,
         }
     }
 
@@ -111,8 +161,11 @@ impl ModelConfig {
             free_points: 16,
             diffusion_steps: 200,
             anchor_scale: Self::ANCHOR_SCALE,
+            anchored_yaw: AnchoredYaw::World,
             relation_bias: true,
+            wall_features: true,
             prediction: Prediction::X0,
+            schedule: NoiseSchedule::Linear,
         }
     }
 

@@ -195,6 +195,16 @@ impl NoisyBatch {
         let target = match cfg.prediction {
             Prediction::Epsilon => noise.clone(),
             Prediction::X0 => host.tokens.clone(),
+            Prediction::V => host
+                .tokens
+                .iter()
+                .zip(&noise)
+                .enumerate()
+                .map(|(k, (&x0, &n))| {
+                    let ab = schedule.alpha_bars[t[k / per_item]];
+                    (ab.sqrt() as f32) * n - ((1.0 - ab).sqrt() as f32) * x0
+                })
+                .collect(),
         };
         NoisyBatch { host, t, noise, target, noisy }
     }
@@ -261,22 +271,33 @@ mod tests {
     }
 
     #[test]
-    fn the_target_is_the_noise_or_the_clean_tokens_and_the_noisy_tokens_mix_them() {
+    fn the_target_is_the_noise_the_clean_tokens_or_the_velocity_and_the_noisy_tokens_mix_them() {
         let scene = generate_room(RoomType::Bedroom, 3, 1, false).scene;
         let mut stats = SplitStats::default();
         stats.add(&scene);
         let bounds = Bounds::from_stats(&stats);
-        for prediction in [Prediction::Epsilon, Prediction::X0] {
+        for prediction in [Prediction::Epsilon, Prediction::X0, Prediction::V] {
             let cfg = ModelConfig { prediction, ..ModelConfig::tiny(RoomType::Bedroom) };
             let mut host = HostBatch::default();
             host.push(&Example::of(&scene, &bounds, &cfg), &cfg);
             let schedule = Schedule::linear(cfg.diffusion_steps);
             let b = NoisyBatch::draw(host, &schedule, &mut Rng::new(2), &cfg);
-            let want = if prediction == Prediction::X0 { &b.host.tokens } else { &b.noise };
-            assert_eq!(&b.target, want);
             let ab = schedule.alpha_bars[b.t[0]] as f32;
-            for ((x, x0), n) in b.noisy.iter().zip(&b.host.tokens).zip(&b.noise) {
+            match prediction {
+                Prediction::Epsilon => assert_eq!(b.target, b.noise),
+                Prediction::X0 => assert_eq!(b.target, b.host.tokens),
+                Prediction::V => {
+                    for ((v, x0), n) in b.target.iter().zip(&b.host.tokens).zip(&b.noise) {
+                        assert!((v - (ab.sqrt() * n - (1.0 - ab).sqrt() * x0)).abs() < 1e-6);
+                    }
+                }
+            }
+            for (((x, x0), n), v) in b.noisy.iter().zip(&b.host.tokens).zip(&b.noise).zip(&b.target) {
                 assert!((x - (ab.sqrt() * x0 + (1.0 - ab).sqrt() * n)).abs() < 1e-5);
+                if prediction == Prediction::V {
+                    // The sampler's inversion gives x₀ back.
+                    assert!((ab.sqrt() * x - (1.0 - ab).sqrt() * v - x0).abs() < 1e-5);
+                }
             }
         }
     }

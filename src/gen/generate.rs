@@ -26,7 +26,7 @@ pub struct Generator {
 impl Generator {
     /// A generator over `checkpoint`.
     pub fn new(checkpoint: Checkpoint) -> Generator {
-        let schedule = Schedule::linear(checkpoint.meta.model.diffusion_steps);
+        let schedule = Schedule::of(&checkpoint.meta.model);
         Generator { checkpoint, schedule, empty_projection: true }
     }
 

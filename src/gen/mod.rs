@@ -29,10 +29,11 @@ mod schedule;
 mod shipped;
 pub mod tokens;
 pub mod train;
+pub mod walls;
 
 pub use adamw::{AdamW, AdamWConfig};
 pub use checkpoint::{Checkpoint, CheckpointMeta, TrainingInfo};
-pub use config::{ModelConfig, Prediction};
+pub use config::{AnchoredYaw, ModelConfig, NoiseSchedule, Prediction};
 pub use dataset::{Example, HostBatch, NoisyBatch, load_split, split_files};
 pub use engine::{Engine, Gradients};
 pub use error::GenError;

@@ -12,6 +12,7 @@
 use super::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES, RELATION_HIDDEN, TIME_FEATURES};
 use super::params::{Init, Linear, Params, layer_norm};
 use super::relations::{self, RELATION_FEATURES};
+use super::walls::{self, WALL_FEATURES};
 use super::{GenError, ModelConfig};
 use candle_core::{D, Device, Tensor};
 use std::collections::BTreeMap;
@@ -122,6 +123,8 @@ pub struct Denoiser {
     pub(super) anchor: Option<Linear>,
     /// With the relation bias: the MLP from a pair's relation to one score bias per head.
     pub(super) relation: Option<[Linear; 2]>,
+    /// With wall features: the embedding of a slot's wall distances, added to its token.
+    pub(super) walls: Option<Linear>,
     pub(super) time: [Linear; 2],
     pub(super) contact: [Linear; 2],
     pub(super) contact_kind: Tensor,
@@ -154,6 +157,10 @@ impl Denoiser {
                     p.linear("relation.0", RELATION_FEATURES, RELATION_HIDDEN, false)?,
                     p.linear("relation.1", RELATION_HIDDEN, cfg.heads, true)?,
                 ]),
+                false => None,
+            },
+            walls: match cfg.wall_features {
+                true => Some(p.linear("walls", WALL_FEATURES, d, false)?),
                 false => None,
             },
             time: [p.linear("time.0", TIME_FEATURES, d, false)?, p.linear("time.1", d, d, false)?],
@@ -194,6 +201,9 @@ impl Denoiser {
             let padding = Tensor::zeros((b, slots - k, self.cfg.d_model), x.dtype(), x.device())?;
             h = (h + Tensor::cat(&[&embedded, &padding], 1)?)?;
         }
+        if let Some(walls) = &self.walls {
+            h = (h + walls.forward(&self.wall_features(x, cond)?)?)?;
+        }
         let mut bias = None;
         if self.cfg.contact_tokens {
             let k = cond.contact_mask.dim(1)?;
@@ -220,6 +230,28 @@ impl Denoiser {
 }
 
 impl Denoiser {
+    /// The wall features (B, S, WALL_FEATURES) of the noisy tokens `x`, computed on the host.
+    fn wall_features(&self, x: &Tensor, cond: &CondTensors) -> Result<Tensor, GenError> {
+        let cfg = &self.cfg;
+        let (b, slots, dim) = x.dims3()?;
+        let (k, f) = (cfg.max_contacts, cfg.floor_points * FLOOR_FEATURES);
+        let values = x.flatten_all()?.to_vec1::<f32>()?;
+        let contacts = cond.contacts.flatten_all()?.to_vec1::<f32>()?;
+        let mask = cond.contact_mask.flatten_all()?.to_vec1::<f32>()?;
+        let floor = cond.floor.flatten_all()?.to_vec1::<f32>()?;
+        let mut features = Vec::with_capacity(b * slots * WALL_FEATURES);
+        for item in 0..b {
+            features.extend(walls::slot_features(
+                cfg,
+                &values[item * slots * dim..(item + 1) * slots * dim],
+                &contacts[item * k * CONTACT_FEATURES..(item + 1) * k * CONTACT_FEATURES],
+                &mask[item * k..(item + 1) * k],
+                &floor[item * f..(item + 1) * f],
+            ));
+        }
+        Ok(Tensor::from_vec(features, (b, slots, WALL_FEATURES), x.device())?)
+    }
+
     /// The relation bias (B, heads, N, N) of the noisy tokens `x` and the contact boxes (which
     /// are rows only with `contact_tokens`), from features computed on the host.
     fn relation_bias(&self, relation: &[Linear; 2], x: &Tensor, cond: &CondTensors) -> Result<Tensor, GenError> {

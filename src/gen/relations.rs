@@ -17,14 +17,14 @@ pub const RELATION_FEATURES: usize = 5;
 /// Where a token is: position (token units, relative to the window centre) and unit yaw.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TokenPose {
-    x: f32,
-    y: f32,
-    cos: f32,
-    sin: f32,
+    pub(super) x: f32,
+    pub(super) y: f32,
+    pub(super) cos: f32,
+    pub(super) sin: f32,
 }
 
 impl TokenPose {
-    fn new(x: f32, y: f32, cos: f32, sin: f32) -> TokenPose {
+    pub(super) fn new(x: f32, y: f32, cos: f32, sin: f32) -> TokenPose {
         let norm = (cos * cos + sin * sin).sqrt();
         let (cos, sin) = if norm > 1e-3 { (cos / norm, sin / norm) } else { (1.0, 0.0) };
         TokenPose { x, y, cos, sin }

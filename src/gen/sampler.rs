@@ -68,6 +68,7 @@ pub fn sample(
         let x0 = match cfg.prediction {
             Prediction::Epsilon => ((&x - (out * (1.0 - ab).sqrt())?)? / ab.sqrt())?,
             Prediction::X0 => out,
+            Prediction::V => ((&x * ab.sqrt())? - (out * (1.0 - ab).sqrt())?)?,
         }
         .clamp(-1f32, 1f32)?;
         let x0 = if t < projection_steps { zero_empty_attributes(&x0, cfg)? } else { x0 };

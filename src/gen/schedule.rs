@@ -1,7 +1,11 @@
-//! The DDPM noise schedule: linear betas over T steps, ᾱ and the posterior coefficients.
+//! The DDPM noise schedule: ᾱ over T steps and the posterior coefficients.
 //!
-//! Betas run linearly from `1000/T · 1e-4` to `1000/T · 0.02` (DDPM's range rescaled to T steps, so
-//! T = 200 still ends at pure noise: ᾱ_T ≈ 5e-5). Everything is computed once, in f64.
+//! Linear: betas run linearly from `1000/T · 1e-4` to `1000/T · 0.02` (DDPM's range rescaled to T
+//! steps, so T = 200 still ends at pure noise: ᾱ_T ≈ 5e-5). Log-SNR: log(ᾱ / (1 − ᾱ)) linear in
+//! t from a small least noise to the same end. Everything is computed once, in f64.
+
+use super::ModelConfig;
+use super::config::{LOG_SNR_SIGMA_MIN, NoiseSchedule};
 
 /// Precomputed schedule of one model.
 #[derive(Debug, Clone, PartialEq)]
@@ -13,6 +17,30 @@ pub struct Schedule {
 }
 
 impl Schedule {
+    /// The schedule a model's config names.
+    pub fn of(cfg: &ModelConfig) -> Schedule {
+        match cfg.schedule {
+            NoiseSchedule::Linear => Schedule::linear(cfg.diffusion_steps),
+            NoiseSchedule::LogSnr => Schedule::log_snr(cfg.diffusion_steps),
+        }
+    }
+
+    /// log-SNR linear in t, from σ = [`LOG_SNR_SIGMA_MIN`] at step 0 to the linear schedule's last
+    /// ᾱ at step T − 1.
+    pub fn log_snr(steps: usize) -> Schedule {
+        let first = ((1.0 - LOG_SNR_SIGMA_MIN.powi(2)) / LOG_SNR_SIGMA_MIN.powi(2)).ln();
+        let end = *Schedule::linear(steps).alpha_bars.last().expect("at least one step");
+        let last = (end / (1.0 - end)).ln();
+        let alpha_bars: Vec<f64> = (0..steps)
+            .map(|t| {
+                let l = if steps == 1 { first } else { first + (last - first) * t as f64 / (steps - 1) as f64 };
+                1.0 / (1.0 + (-l).exp())
+            })
+            .collect();
+        let betas = (0..steps).map(|t| 1.0 - alpha_bars[t] / if t == 0 { 1.0 } else { alpha_bars[t - 1] }).collect();
+        Schedule { betas, alpha_bars }
+    }
+
     /// The linear schedule with `steps` steps.
     pub fn linear(steps: usize) -> Schedule {
         let scale = 1000.0 / steps as f64;
@@ -68,6 +96,19 @@ mod tests {
         assert!((s.alpha_bars[1] - (1.0 - b0) * (1.0 - b1)).abs() < 1e-15);
         // Σβ = 200 · (5e-4 + 0.1) / 2 = 10.05, so ᾱ_T ≈ exp(−10.05 − Σβ²/2) ≈ 2.0e-5 … 4.4e-5.
         assert!(s.alpha_bars[199] > 1e-5 && s.alpha_bars[199] < 5e-5, "{}", s.alpha_bars[199]);
+    }
+
+    #[test]
+    fn log_snr_runs_from_the_least_noise_to_the_linear_end_in_equal_log_steps() {
+        let s = Schedule::log_snr(200);
+        let snr = |t: usize| (s.alpha_bars[t] / (1.0 - s.alpha_bars[t])).ln();
+        assert!(((1.0 - s.alpha_bars[0]).sqrt() - LOG_SNR_SIGMA_MIN).abs() < 1e-12);
+        assert!((s.alpha_bars[199] - Schedule::linear(200).alpha_bars[199]).abs() < 1e-12);
+        for t in 1..200 {
+            assert!((snr(t) - snr(t - 1) - (snr(199) - snr(0)) / 199.0).abs() < 1e-9);
+            // ᾱ is the product of the (1 − β) so far.
+            assert!((s.alpha_bars[t] - s.alpha_bars[t - 1] * (1.0 - s.betas[t])).abs() < 1e-12);
+        }
     }
 
     #[test]

@@ -62,6 +62,9 @@ pub(super) fn run(net: &GradNet, p: &[f32], tape: &Tape, inp: &ChunkInputs, tota
     // Tokens: the object rows came from the input layer, the contact rows from the encoded boxes
     // plus the learned contact-kind vector.
     net.input.backward(p, g, inp.noisy, &dh[..objects * d], None);
+    if let Some(walls) = &net.walls {
+        walls.backward(p, g, &step.wall_in, &dh[..objects * d], None);
+    }
     if let Some(anchor) = &net.anchor {
         let danchored: Vec<f32> = cond
             .contact_row

@@ -14,7 +14,7 @@ use super::{ChunkInputs, ConditionInputs, GradNet};
 use crate::generator::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES};
 use crate::generator::matmul::LinearAt;
 use crate::generator::model::time_feature_values;
-use crate::generator::relations;
+use crate::generator::{relations, walls};
 
 /// A PointNet's activations: ReLU outputs of the first two layers, the third's output and, per
 /// item, the max over the points.
@@ -70,9 +70,11 @@ pub(crate) struct ConditionTape {
     pub(super) contact_in: Vec<f32>,
     pub(super) contact_item: Vec<usize>,
     pub(super) contact_weight: Vec<f32>,
-    /// Every item's contact features and mask as given (padding included).
+    /// Every item's contact features and mask as given (padding included), and its floor-plan
+    /// points.
     pub(super) contacts: Vec<f32>,
     pub(super) mask: Vec<f32>,
+    pub(super) floor_in: Vec<f32>,
     /// The object row each visible box is anchored to (item × slots + box index).
     pub(super) contact_row: Vec<usize>,
     /// With anchored slots: each visible box's embedding × its mask weight, added to its row.
@@ -148,6 +150,7 @@ impl ConditionTape {
             contact_weight,
             contacts: inp.contacts.to_vec(),
             mask: inp.mask.to_vec(),
+            floor_in: if net.walls.is_some() { inp.floor.to_vec() } else { Vec::new() },
             contact_row,
             anchored,
             contact_count,
@@ -174,6 +177,8 @@ pub(super) struct StepTape {
     pub(super) relation_pre: Vec<f32>,
     pub(super) relation_act: Vec<f32>,
     pub(super) relation_bias: Vec<Vec<f32>>,
+    /// With wall features: every object row's ([`walls::slot_features`]).
+    pub(super) wall_in: Vec<f32>,
     /// Per block (items × 6d), then the final layer's (items × 2d).
     pub(super) modulation: Vec<Vec<f32>>,
     pub(super) blocks: Vec<BlockTape>,
@@ -210,6 +215,15 @@ impl StepTape {
 
         let mut h = vec![0f32; row_item.len() * d];
         net.input.forward(p, noisy, &mut h[..objects * d]);
+        let wall_in = match &net.walls {
+            Some(walls) => {
+                let features = wall_features(net, cond, noisy);
+                let embedded = walls.map(p, &features);
+                h[..objects * d].iter_mut().zip(&embedded).for_each(|(v, e)| *v += e);
+                features
+            }
+            None => Vec::new(),
+        };
         for (&r, e) in cond.contact_row.iter().zip(cond.anchored.chunks_exact(d)) {
             h[r * d..(r + 1) * d].iter_mut().zip(e).for_each(|(v, e)| *v += e);
         }
@@ -260,6 +274,7 @@ impl StepTape {
             relation_pre,
             relation_act,
             relation_bias,
+            wall_in,
             modulation,
             blocks,
             final_u,
@@ -268,6 +283,23 @@ impl StepTape {
             out,
         }
     }
+}
+
+/// The wall features of a chunk's object rows, item by item.
+fn wall_features(net: &GradNet, cond: &ConditionTape, noisy: &[f32]) -> Vec<f32> {
+    let cfg = &net.cfg;
+    let (k, per_item, f) = (cfg.max_contacts, cfg.slots() * cfg.token_dim(), cfg.floor_points * FLOOR_FEATURES);
+    (0..cond.items.len())
+        .flat_map(|item| {
+            walls::slot_features(
+                cfg,
+                &noisy[item * per_item..(item + 1) * per_item],
+                &cond.contacts[item * k * CONTACT_FEATURES..(item + 1) * k * CONTACT_FEATURES],
+                &cond.mask[item * k..(item + 1) * k],
+                &cond.floor_in[item * f..(item + 1) * f],
+            )
+        })
+        .collect()
 }
 
 /// The relation bias of a chunk: every item's pair features (its rows in `cond.items` order),

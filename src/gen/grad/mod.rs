@@ -23,6 +23,7 @@ use super::dataset::NoisyBatch;
 use super::flat::ParamLayout;
 use super::matmul::LinearAt;
 use super::relations::RELATION_FEATURES;
+use super::walls::WALL_FEATURES;
 use super::{GenError, ModelConfig};
 pub(crate) use forward::ConditionTape;
 use rayon::prelude::*;
@@ -48,6 +49,7 @@ pub struct GradNet {
     input: LinearAt,
     anchor: Option<LinearAt>,
     relation: Option<[LinearAt; 2]>,
+    walls: Option<LinearAt>,
     time: [LinearAt; 2],
     contact: [LinearAt; 2],
     contact_kind: usize,
@@ -132,6 +134,7 @@ impl GradNet {
                 ]),
                 false => None,
             },
+            walls: if cfg.wall_features { Some(linear("walls", WALL_FEATURES, d)?) } else { None },
             time: [linear("time.0", super::config::TIME_FEATURES, d)?, linear("time.1", d, d)?],
             contact: [linear("contact.0", CONTACT_FEATURES, d)?, linear("contact.1", d, d)?],
             contact_kind: find(layout, "contact_kind", &[1, 1, d])?,

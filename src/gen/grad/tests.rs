@@ -108,4 +108,5 @@ fn gradients_equal_candles_with_anchored_slots_relations_and_every_weight_set() 
         assert!(*worst <= 1e-4 * scale, "{name}: worst {worst:e} of {scale:e}");
     }
     assert!(grads.contains_key("anchor.weight") && grads.contains_key("relation.0.weight"));
+    assert!(cfg.wall_features && grads.contains_key("walls.weight"));
 }
