@@ -188,7 +188,7 @@ pub fn train(
     val_set.truncate(opts.val_scenes);
     std::fs::create_dir_all(&opts.out).map_err(|e| GenError::io(&opts.out, e))?;
 
-    let schedule = Schedule::of(&cfg);
+    let schedule = Schedule::of(cfg);
     let mut init = Params::random(opts.seed);
     Denoiser::new(cfg, &mut init)?;
     let (layout, mut params) = ParamLayout::of(&init.snapshot()?)?;
