@@ -10,7 +10,7 @@ use shade_sim::data::read_stats;
 use shade_sim::export::{LossPoint, render_loss_png};
 use shade_sim::generator::train::LogLine;
 use shade_sim::generator::{
-    Engine, GenError, ModelConfig, NoiseSchedule, Prediction, TrainObserver, TrainOptions, train,
+    AnchoredYaw, Engine, GenError, ModelConfig, NoiseSchedule, Prediction, TrainObserver, TrainOptions, train,
 };
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -43,6 +43,14 @@ pub struct TrainArgs {
     /// The noise schedule: linear or log_snr (default: the preset's).
     #[arg(long, value_parser = parse_schedule)]
     pub schedule: Option<NoiseSchedule>,
+    /// How an anchored slot's yaw is given: world or box (relative to its contact box's; default:
+    /// the preset's, world).
+    #[arg(long, value_parser = parse_anchored_yaw)]
+    pub anchored_yaw: Option<AnchoredYaw>,
+    /// Whether object tokens get the wall-distance embedding: true or false (default: the
+    /// preset's, true).
+    #[arg(long)]
+    pub wall_features: Option<bool>,
     /// Seed of initialisation, batches and noise.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
@@ -85,6 +93,14 @@ fn parse_schedule(s: &str) -> Result<NoiseSchedule, String> {
     }
 }
 
+fn parse_anchored_yaw(s: &str) -> Result<AnchoredYaw, String> {
+    match s {
+        "world" => Ok(AnchoredYaw::World),
+        "box" => Ok(AnchoredYaw::Box),
+        other => Err(format!("unknown anchored yaw {other:?} (world, box)")),
+    }
+}
+
 /// The progress bar, and the model folder where each checkpoint's `loss.png` goes.
 struct Bar(ProgressBar, PathBuf);
 
@@ -119,6 +135,12 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     }
     if let Some(schedule) = args.schedule {
         model.schedule = schedule;
+    }
+    if let Some(anchored_yaw) = args.anchored_yaw {
+        model.anchored_yaw = anchored_yaw;
+    }
+    if let Some(wall_features) = args.wall_features {
+        model.wall_features = wall_features;
     }
     let state = args.out.join(shade_sim::generator::checkpoint::STATE_META_FILE);
     anyhow::ensure!(

@@ -91,7 +91,7 @@ impl Generator {
                 &self.schedule,
                 &cond,
                 &seeds,
-                if self.empty_projection { empty_projection_steps(self.schedule.steps()) } else { 0 },
+                if self.empty_projection { empty_projection_steps(&self.schedule) } else { 0 },
                 guide.as_mut().map(|g| g.as_mut() as &mut dyn Guidance),
             )?;
             let per_item = meta.model.slots() * meta.model.token_dim();

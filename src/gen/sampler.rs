@@ -84,7 +84,8 @@ pub fn sample(
     Ok(frame(&x, false)?.flatten_all()?.to_vec1::<f32>()?)
 }
 
-/// The last steps in which [`zero_empty_attributes`] projects x̂0: 0.4 T (80 of 200).
+/// The last steps in which [`zero_empty_attributes`] projects x̂0: those with less noise than the
+/// linear schedule's step 0.4 T (so 80 of 200 on the linear schedule itself).
 ///
 /// Without it the shipped models sample 40–55 % more objects than their data has (6.3 vs 4.4 per
 /// val bedroom, 11.7 vs 7.4 living, 13.7 vs 9.7 dining); an empty slot's attributes carry no loss,
@@ -93,9 +94,10 @@ pub fn sample(
 /// on, a slot that is momentarily empty stays so; so does setting the whole token to "empty":
 /// 3.0 per bedroom even from 0.15 T); from step 0.4 T down the val splits get 4.29 / 7.28 / 9.56
 /// objects per room against 4.39 / 7.45 / 9.73 in the data, and fewer layouts penetrate a person
-/// (docs/RESULTS.md, "Empty-slot projection").
-pub fn empty_projection_steps(steps: usize) -> usize {
-    steps * 2 / 5
+/// (docs/RESULTS.md, "Empty-slot projection"). The threshold is a noise level, not a step count,
+/// because what decides whether a slot is still open is how much noise is left.
+pub fn empty_projection_steps(schedule: &Schedule) -> usize {
+    schedule.steps_below(&Schedule::linear(schedule.steps()), schedule.steps() * 2 / 5)
 }
 
 /// Sets the continuous attributes of every slot whose largest class is "empty" to 0, as in the

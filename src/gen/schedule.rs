@@ -59,6 +59,13 @@ impl Schedule {
         Schedule { betas, alpha_bars }
     }
 
+    /// How many of this schedule's steps carry less noise than `other`'s step `t` (more signal:
+    /// ᾱ greater): `t` itself when `other` is this schedule.
+    pub fn steps_below(&self, other: &Schedule, t: usize) -> usize {
+        let level = other.alpha_bars[t.min(other.steps() - 1)];
+        self.alpha_bars.iter().filter(|&&ab| ab > level).count()
+    }
+
     /// Number of steps T.
     pub fn steps(&self) -> usize {
         self.betas.len()
@@ -109,6 +116,16 @@ mod tests {
             // ᾱ is the product of the (1 − β) so far.
             assert!((s.alpha_bars[t] - s.alpha_bars[t - 1] * (1.0 - s.betas[t])).abs() < 1e-12);
         }
+    }
+
+    #[test]
+    fn steps_below_a_noise_level_are_counted_in_either_schedule() {
+        let (linear, log_snr) = (Schedule::linear(200), Schedule::log_snr(200));
+        assert_eq!(linear.steps_below(&linear, 80), 80);
+        let n = log_snr.steps_below(&linear, 80);
+        // Every counted log-SNR step has more signal than linear step 80, the next one not.
+        assert!(log_snr.alpha_bars[n - 1] > linear.alpha_bars[80] && log_snr.alpha_bars[n] <= linear.alpha_bars[80]);
+        assert!(n > 80, "log-SNR spends more steps at low noise: {n}");
     }
 
     #[test]
