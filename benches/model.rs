@@ -83,7 +83,7 @@ impl Trainer {
 fn sample_once(s: &Setup, rng: &mut Rng) {
     let cond = conditions(&s.cfg, SAMPLE_BATCH, rng);
     let seeds: Vec<u64> = (0..SAMPLE_BATCH as u64).collect();
-    let projection = empty_projection_steps(s.schedule.steps());
+    let projection = empty_projection_steps(&s.schedule);
     black_box(sample(&s.shipped, &s.schedule, &cond, &seeds, projection, None).unwrap());
 }
 
