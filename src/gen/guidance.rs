@@ -13,12 +13,16 @@
 //!   and are left out of J_m (as Col_mot leaves them out).
 //! - J_o uses the exact oriented-box IoU; its gradient is a central difference of the exact value,
 //!   computed only for pairs whose bounding boxes meet.
+//! - J_c (ours, not SHADE's) holds the piece in an anchored slot under its person: the soft area
+//!   (m²) of its contact box's footprint that the piece's footprint does not cover. With it the
+//!   pieces under people move like any other (out of a wall, off a nightstand) as far as their
+//!   person still rests on them, instead of being frozen.
 //!
 //! Empty slots (largest class "empty") are left alone. The physics-feedback term lives elsewhere.
 
 use super::tokens::decode_slots;
 use super::{Bounds, GenError, Guidance, ModelConfig};
-use crate::geom::{Mask, OBox, RoomWindow, iou_3d};
+use crate::geom::{Mask, OBox, RoomWindow, intersection_volume, iou_3d};
 use crate::human::Conditions;
 use crate::physics::Physics;
 use crate::scene::{Object, Scene};
@@ -38,6 +42,19 @@ pub struct GuidanceConfig {
     pub bound: f64,
     /// Weight of J_o (Σ pairwise IoU).
     pub object: f64,
+    /// How J_o measures a pair's overlap.
+    #[serde(default)]
+    pub overlap: Overlap,
+    /// Largest distance (m) a piece's centre moves in one gradient step; `None` = unbounded.
+    #[serde(default)]
+    pub max_step: Option<f64>,
+    /// Gradient steps on x̂0 per guided diffusion step (stopping early at J = 0).
+    #[serde(default = "GuidanceConfig::default_iterations")]
+    pub iterations: usize,
+    /// Weight of J_c (contact-box footprint left uncovered by the piece anchored to it), per m².
+    /// On whenever a spatial term is; 0 leaves anchored pieces free.
+    #[serde(default = "GuidanceConfig::default_contact")]
+    pub contact: f64,
     /// Step size γ (token units per unit of weighted J gradient).
     pub scale: f64,
     /// Guide only at steps t < `until_step` (steps count down from T − 1 to 0).
@@ -59,27 +76,55 @@ pub struct GuidanceConfig {
 }
 
 impl GuidanceConfig {
-    /// All three spatial terms with the default weights (γ 0.1 from the sweep in docs/RESULTS.md).
+    /// All three spatial terms with the default settings, chosen on the val splits
+    /// (docs/RESULTS.md, "Guidance that converges"): J_b weighted 4, J_o as the share of the
+    /// smaller piece, J_c 4 holding the pieces under people (which otherwise move like any piece),
+    /// and in each of the last 20 steps up to 64 gradient steps of at most 3 cm.
     pub fn all() -> GuidanceConfig {
         GuidanceConfig {
             motion: 1.0,
-            bound: 1.0,
+            bound: 4.0,
             object: 1.0,
+            overlap: Overlap::Smaller,
+            max_step: Some(0.03),
+            iterations: 64,
+            contact: 4.0,
             scale: 0.1,
-            until_step: 100,
-            anchored_mobility: Self::ANCHORED_MOBILITY,
+            until_step: 20,
+            anchored_mobility: 1.0,
             phys: 0.0,
             phys_until: 20,
             phys_every: 4,
         }
     }
 
-    /// The default [`anchored_mobility`](Self::anchored_mobility), chosen on the val splits
-    /// (docs/RESULTS.md, "Guidance and anchored pieces").
-    pub const ANCHORED_MOBILITY: f64 = 0.0;
+    /// SHADE's guidance as the paper gives it and as this crate had it before the settings above:
+    /// unit weights, IoU, one step of γ 0.1 in each of the last 100 steps, nothing holding the
+    /// pieces under people but `anchored_mobility` 0. A config file that leaves the newer fields
+    /// out gets these.
+    pub fn shade() -> GuidanceConfig {
+        GuidanceConfig {
+            bound: 1.0,
+            overlap: Overlap::Iou,
+            max_step: None,
+            iterations: 1,
+            contact: 0.0,
+            until_step: 100,
+            anchored_mobility: 0.0,
+            ..Self::all()
+        }
+    }
 
     fn default_anchored_mobility() -> f64 {
-        Self::ANCHORED_MOBILITY
+        Self::shade().anchored_mobility
+    }
+
+    fn default_iterations() -> usize {
+        Self::shade().iterations
+    }
+
+    fn default_contact() -> f64 {
+        Self::shade().contact
     }
 
     /// The weight `phys` takes when the term is asked for.
@@ -147,6 +192,32 @@ impl GuidanceConfig {
     }
 }
 
+/// How J_o measures the overlap of two pieces.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Overlap {
+    /// SHADE's 3D IoU: intersection over union. A nightstand half inside a double bed scores
+    /// about 0.02 (the bed's volume dominates the union), so its gradient barely moves it.
+    #[default]
+    Iou,
+    /// Intersection over the smaller piece's volume: the share of the smaller piece that is
+    /// inside the other, whatever the other's size.
+    Smaller,
+}
+
+impl Overlap {
+    /// The overlap of `a` and `b`.
+    pub fn of(self, a: &OBox, b: &OBox) -> f64 {
+        match self {
+            Overlap::Iou => iou_3d(a, b),
+            Overlap::Smaller => {
+                let v = a.volume().min(b.volume());
+                if v > 0.0 { intersection_volume(a, b) / v } else { 0.0 }
+            }
+        }
+    }
+}
+
 /// An object as the guidance sees it: world centre, full size, yaw.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GuidedObject {
@@ -188,13 +259,16 @@ pub struct SceneMasks {
     pub free: Mask,
     /// Outside the floor plan.
     pub outside: Mask,
+    /// The footprints of the contact boxes, in the scene's box order (box k anchors slot k).
+    pub contacts: Vec<Mask>,
 }
 
 impl SceneMasks {
     /// The masks of `scene`.
     pub fn of(scene: &Scene) -> SceneMasks {
         let c = Conditions::of(scene);
-        SceneMasks { window: c.window, free: c.free_space, outside: c.floor.inverted() }
+        let contacts = c.contact_boxes.iter().map(|b| Mask::of_footprint(&c.window, &b.obox)).collect();
+        SceneMasks { window: c.window, free: c.free_space, outside: c.floor.inverted(), contacts }
     }
 }
 
@@ -256,9 +330,9 @@ pub fn soft_coverage(
     (total, grads)
 }
 
-/// Σ_{i<j} IoU_3D(o_i, o_j) (each unordered pair once; the paper's Σ_{i≠j} is twice this), with
-/// central-difference gradients of the exact IoU.
-pub fn pairwise_iou(objects: &[GuidedObject]) -> (f64, Vec<ObjectGradient>) {
+/// Σ_{i<j} overlap(o_i, o_j) (each unordered pair once; the paper's Σ_{i≠j} of IoU is twice this),
+/// with central-difference gradients of the exact value.
+pub fn pairwise_overlap(objects: &[GuidedObject], overlap: Overlap) -> (f64, Vec<ObjectGradient>) {
     let mut total = 0.0;
     let mut grads = vec![[0.0; 7]; objects.len()];
     let boxes: Vec<OBox> = objects.iter().map(GuidedObject::obox).collect();
@@ -271,11 +345,11 @@ pub fn pairwise_iou(objects: &[GuidedObject]) -> (f64, Vec<ObjectGradient>) {
             if apart {
                 continue;
             }
-            let iou = iou_3d(&boxes[i], &boxes[j]);
-            if iou <= 0.0 {
+            let value = overlap.of(&boxes[i], &boxes[j]);
+            if value <= 0.0 {
                 continue;
             }
-            total += iou;
+            total += value;
             for (me, other) in [(i, j), (j, i)] {
                 for (k, g) in grads[me].iter_mut().enumerate() {
                     let h = 1e-3;
@@ -286,7 +360,7 @@ pub fn pairwise_iou(objects: &[GuidedObject]) -> (f64, Vec<ObjectGradient>) {
                             3..=5 => o.size[k - 3] = (o.size[k - 3] + delta).max(1e-3),
                             _ => o.yaw += delta,
                         }
-                        iou_3d(&o.obox(), &boxes[other])
+                        overlap.of(&o.obox(), &boxes[other])
                     };
                     *g += (at(h) - at(-h)) / (2.0 * h);
                 }
@@ -296,8 +370,36 @@ pub fn pairwise_iou(objects: &[GuidedObject]) -> (f64, Vec<ObjectGradient>) {
     (total, grads)
 }
 
-/// The weighted J of one scene's objects and its gradient.
-pub fn guidance_cost(objects: &[GuidedObject], masks: &SceneMasks, cfg: &GuidanceConfig) -> (f64, Vec<ObjectGradient>) {
+/// J_c: Σ over anchored objects of the soft area (m²) of their contact box's footprint mask that
+/// their own footprint leaves uncovered, with gradients. `boxes[i]` is object i's contact box
+/// footprint, `None` for a free piece.
+pub fn contact_shortfall(
+    objects: &[GuidedObject],
+    boxes: &[Option<&Mask>],
+    window: &RoomWindow,
+) -> (f64, Vec<ObjectGradient>) {
+    let mut total = 0.0;
+    let mut grads = vec![[0.0; 7]; objects.len()];
+    for ((o, mask), g) in objects.iter().zip(boxes).zip(&mut grads) {
+        if let Some(mask) = mask {
+            let (covered, cg) = soft_coverage(std::slice::from_ref(o), mask, window, |_| false);
+            total += mask.count() as f64 * window.pixel_area() - covered;
+            for k in 0..7 {
+                g[k] = -cg[0][k];
+            }
+        }
+    }
+    (total, grads)
+}
+
+/// The weighted J of one scene's objects and its gradient; `anchors[i]` is the contact box object
+/// i is anchored to, if any.
+pub fn guidance_cost(
+    objects: &[GuidedObject],
+    anchors: &[Option<usize>],
+    masks: &SceneMasks,
+    cfg: &GuidanceConfig,
+) -> (f64, Vec<ObjectGradient>) {
     let mut total = 0.0;
     let mut grads = vec![[0.0; 7]; objects.len()];
     let mut add = |w: f64, (v, g): (f64, Vec<ObjectGradient>)| {
@@ -317,7 +419,11 @@ pub fn guidance_cost(objects: &[GuidedObject], masks: &SceneMasks, cfg: &Guidanc
         add(cfg.bound, soft_coverage(objects, &masks.outside, &masks.window, |_| false));
     }
     if cfg.object > 0.0 {
-        add(cfg.object, pairwise_iou(objects));
+        add(cfg.object, pairwise_overlap(objects, cfg.overlap));
+    }
+    if cfg.contact > 0.0 {
+        let boxes: Vec<Option<&Mask>> = anchors.iter().map(|a| a.and_then(|k| masks.contacts.get(k))).collect();
+        add(cfg.contact, contact_shortfall(objects, &boxes, &masks.window));
     }
     (total, grads)
 }
@@ -365,25 +471,58 @@ impl Guidance for SpatialGuidance {
             .par_chunks_exact_mut(per_item)
             .zip(self.masks.par_iter().zip(&self.ceilings).zip(&self.anchored))
             .map(|(tokens, ((masks, &ceiling), &anchored))| {
-                let decoded = decode_slots(tokens, masks.window.center, ceiling, bounds, model);
-                let slots: Vec<usize> = decoded.iter().map(|(slot, _)| *slot).collect();
-                let objects: Vec<GuidedObject> = decoded.iter().map(|(_, o)| GuidedObject::of(o)).collect();
-                let (j, grads) = guidance_cost(&objects, masks, cfg);
-                for (&slot, g) in slots.iter().zip(&grads) {
-                    let t = &mut tokens[slot * dim..(slot + 1) * dim];
-                    let step = token_gradient(t, g, bounds);
-                    let scale = if slot < anchored { cfg.scale * cfg.anchored_mobility } else { cfg.scale };
-                    for (x, s) in t.iter_mut().zip(step) {
-                        *x = (*x - (scale * s) as f32).clamp(-1.0, 1.0);
+                let mut first = None;
+                for _ in 0..cfg.iterations.max(1) {
+                    let j = guide_item(tokens, masks, ceiling, anchored, model, bounds, cfg);
+                    first.get_or_insert(j);
+                    if j <= 0.0 {
+                        break;
                     }
                 }
-                j
+                first.unwrap_or(0.0)
             })
             .sum();
         tracing::debug!(step = t, j = total, "guidance");
         self.history.push((t, total));
         Ok(Tensor::from_vec(v, dims, x0.device())?)
     }
+}
+
+/// One gradient step on one item's tokens (world form); returns J before the step.
+fn guide_item(
+    tokens: &mut [f32],
+    masks: &SceneMasks,
+    ceiling: f64,
+    anchored: usize,
+    model: &ModelConfig,
+    bounds: &Bounds,
+    cfg: &GuidanceConfig,
+) -> f64 {
+    let dim = model.token_dim();
+    let decoded = decode_slots(tokens, masks.window.center, ceiling, bounds, model);
+    let slots: Vec<usize> = decoded.iter().map(|(slot, _)| *slot).collect();
+    let objects: Vec<GuidedObject> = decoded.iter().map(|(_, o)| GuidedObject::of(o)).collect();
+    let anchors: Vec<Option<usize>> = slots.iter().map(|&s| (s < anchored).then_some(s)).collect();
+    let (j, grads) = guidance_cost(&objects, &anchors, masks, cfg);
+    for (&slot, g) in slots.iter().zip(&grads) {
+        let t = &mut tokens[slot * dim..(slot + 1) * dim];
+        let step = token_gradient(t, g, bounds);
+        let mut scale = if slot < anchored { cfg.scale * cfg.anchored_mobility } else { cfg.scale };
+        if let Some(cap) = cfg.max_step {
+            // The centre's world displacement: the token moves by scale·step, a token unit is half
+            // the decoding range.
+            let moved = (0..2)
+                .map(|k| scale * step[k] * (bounds.center_max[k] - bounds.center_min[k]) * 0.5)
+                .fold(0.0, |acc: f64, d| acc.hypot(d));
+            if moved > cap {
+                scale *= cap / moved;
+            }
+        }
+        for (x, s) in t.iter_mut().zip(step) {
+            *x = (*x - (scale * s) as f32).clamp(-1.0, 1.0);
+        }
+    }
+    j
 }
 
 /// ∂J/∂token (first 8 entries: centre, size, cos, sin) from ∂J/∂(world parameters).
@@ -489,7 +628,7 @@ mod tests {
     #[test]
     fn pairwise_iou_gradient_points_apart() {
         let objs = objects();
-        let (value, grads) = pairwise_iou(&objs);
+        let (value, grads) = pairwise_overlap(&objs, Overlap::Iou);
         let exact = iou_3d(&objs[1].obox(), &objs[2].obox()) + iou_3d(&objs[0].obox(), &objs[1].obox());
         assert!((value - exact).abs() < 1e-12 && value > 0.0);
         // A small step against the gradient lowers the total IoU.
@@ -499,7 +638,48 @@ mod tests {
             o.center.y -= 0.01 * g[1];
             o.yaw -= 0.01 * g[6];
         }
-        assert!(pairwise_iou(&moved).0 < value);
+        assert!(pairwise_overlap(&moved, Overlap::Iou).0 < value);
+    }
+
+    #[test]
+    fn overlap_of_a_small_piece_inside_a_large_one() {
+        // A 0.4 m cube half inside a 2 × 2 × 0.4 m slab: half the cube is inside the slab.
+        let big = OBox::new(DVec3::new(0.0, 0.0, 0.2), DVec3::new(2.0, 2.0, 0.4), 0.0);
+        let small = OBox::new(DVec3::new(1.0, 0.0, 0.2), DVec3::new(0.4, 0.4, 0.4), 0.0);
+        assert!((Overlap::Smaller.of(&big, &small) - 0.5).abs() < 1e-9);
+        // IoU: 0.032 m³ over 1.6 + 0.064 − 0.032 m³.
+        assert!((Overlap::Iou.of(&big, &small) - 0.032 / 1.632).abs() < 1e-9);
+        let apart = OBox::new(DVec3::new(1.5, 0.0, 0.2), DVec3::new(0.4, 0.4, 0.4), 0.0);
+        assert_eq!(Overlap::Smaller.of(&big, &apart), 0.0);
+    }
+
+    #[test]
+    fn contact_shortfall_is_the_uncovered_area_with_its_gradient() {
+        let w = window();
+        // A 0.6 × 0.4 m contact box at (2, 2) and a 1 × 1 m piece covering it, then shifted so that
+        // its edge cuts the box.
+        let b = OBox::new(DVec3::new(2.0, 2.0, 0.5), DVec3::new(0.6, 0.4, 0.3), 0.0);
+        let mask = Mask::of_footprint(&w, &b);
+        let piece = |x: f64| GuidedObject {
+            center: DVec3::new(x, 2.0, 0.4),
+            size: DVec3::new(1.0, 1.0, 0.8),
+            yaw: 0.0,
+            hanging: false,
+        };
+        let (covered, _) = contact_shortfall(&[piece(2.0)], &[Some(&mask)], &w);
+        assert!(covered.abs() < 0.01 * 0.24, "covered box leaves {covered} m²");
+        // Centred at x = 1.5 the piece ends at x = 2.0: the box's half beyond (0.3 × 0.4 m) is
+        // uncovered, and each metre the piece moves towards it uncovers 0.4 m² less.
+        let objs = [piece(1.5)];
+        let (half, grads) = contact_shortfall(&objs, &[Some(&mask)], &w);
+        assert!((half - 0.12).abs() < 0.01, "{half}");
+        let h = 1e-4;
+        let shifted = |d: f64| contact_shortfall(&[piece(1.5 + d)], &[Some(&mask)], &w).0;
+        let fd = (shifted(h) - shifted(-h)) / (2.0 * h);
+        assert!((fd - grads[0][0]).abs() < 1e-3 * (1.0 + fd.abs()), "fd {fd} analytic {}", grads[0][0]);
+        // Moving the piece towards the box (+x) uncovers less; a free piece costs nothing.
+        assert!(grads[0][0] < -0.3);
+        assert_eq!(contact_shortfall(&objs, &[None], &w).0, 0.0);
     }
 
     #[test]
@@ -565,5 +745,43 @@ mod batch_tests {
             let out = g.guide(&x0, 10).unwrap().flatten_all().unwrap().to_vec1::<f32>().unwrap();
             assert_eq!(out[..8] != tok[..8], moves, "mobility {mobility}");
         }
+    }
+
+    #[test]
+    fn the_contact_term_pulls_an_anchored_piece_back_under_its_person() {
+        let mut scene = generate_room(RoomType::Bedroom, 2, 1, false).scene;
+        let boxes = Conditions::contact_boxes_of(&scene);
+        assert!(!boxes.is_empty(), "the scene has a contact box");
+        let b = boxes[0].obox;
+        // The piece in slot 0 (anchored to box 0): the box's footprint grown by 0.1 m each side,
+        // shifted 0.3 m along the box's own x axis, so that a 0.2 m strip of the box is uncovered.
+        scene.objects.truncate(1);
+        let o = &mut scene.objects[0];
+        let shifted = b.to_world(DVec3::new(0.3, 0.0, 0.0));
+        o.center = [shifted.x, shifted.y, o.center[2]];
+        o.size = [b.size.x + 0.2, b.size.y + 0.2, o.size[2]];
+        o.yaw = b.yaw;
+        let cfg = ModelConfig::tiny(RoomType::Bedroom);
+        let mut stats = SplitStats::default();
+        stats.add(&scene);
+        let bounds = Bounds::from_stats(&stats);
+        let masks = SceneMasks::of(&scene);
+        let (tok, _) = tokens::encode(&scene, masks.window.center, &[], &bounds, &cfg);
+        let x0 = Tensor::from_vec(tok, (1, cfg.slots(), cfg.token_dim()), &candle_core::Device::Cpu).unwrap();
+        let shortfall = |tokens: &[f32]| {
+            let piece = GuidedObject::of(&tokens::decode(tokens, masks.window.center, 2.6, &bounds, &cfg)[0]);
+            contact_shortfall(&[piece], &[Some(&masks.contacts[0])], &masks.window).0
+        };
+        let before = shortfall(&x0.flatten_all().unwrap().to_vec1::<f32>().unwrap());
+        // Only J_c can move the lone piece (J_o has no pair; J_m and J_b off).
+        let only_contact = GuidanceConfig { motion: 0.0, bound: 0.0, ..GuidanceConfig::all() };
+        let mut g = SpatialGuidance::new(only_contact.clone(), &cfg, &bounds, &[&scene]);
+        let out = g.guide(&x0, 0).unwrap().flatten_all().unwrap().to_vec1::<f32>().unwrap();
+        let after = shortfall(&out);
+        assert!(before > 0.1 * b.size.y && after < 0.1 * before, "uncovered {before} → {after} m²");
+        // Without J_c, nothing holds it.
+        let mut none = SpatialGuidance::new(GuidanceConfig { contact: 0.0, ..only_contact }, &cfg, &bounds, &[&scene]);
+        let kept = none.guide(&x0, 0).unwrap().flatten_all().unwrap().to_vec1::<f32>().unwrap();
+        assert!((shortfall(&kept) - before).abs() < 1e-6);
     }
 }
