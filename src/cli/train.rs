@@ -38,14 +38,14 @@ pub struct TrainArgs {
     #[arg(long, default_value = "small")]
     pub preset: String,
     /// What the denoiser predicts: eps, x0 or v (default: the preset's, x0 for small and tiny).
-    #[arg(long, value_parser = parse_prediction)]
+    #[arg(long, value_parser = by_config_name::<Prediction>)]
     pub prediction: Option<Prediction>,
     /// The noise schedule: linear or log_snr (default: the preset's).
-    #[arg(long, value_parser = parse_schedule)]
+    #[arg(long, value_parser = by_config_name::<NoiseSchedule>)]
     pub schedule: Option<NoiseSchedule>,
     /// How an anchored slot's yaw is given: world or box (relative to its contact box's; default:
     /// the preset's, world).
-    #[arg(long, value_parser = parse_anchored_yaw)]
+    #[arg(long, value_parser = by_config_name::<AnchoredYaw>)]
     pub anchored_yaw: Option<AnchoredYaw>,
     /// Whether object tokens get the wall-distance embedding: true or false (default: the
     /// preset's, true).
@@ -72,33 +72,14 @@ pub struct TrainArgs {
     pub category_balance: f64,
     /// Gradient engine: fused (the hand-written pass on every core) or candle (autograd, the
     /// slower reference it is tested against).
-    #[arg(long, default_value = "fused")]
+    #[arg(long, default_value = "fused", value_parser = by_config_name::<Engine>)]
     pub engine: Engine,
 }
 
-fn parse_prediction(s: &str) -> Result<Prediction, String> {
-    match s {
-        "eps" | "epsilon" => Ok(Prediction::Epsilon),
-        "x0" => Ok(Prediction::X0),
-        "v" => Ok(Prediction::V),
-        other => Err(format!("unknown prediction {other:?} (eps, x0, v)")),
-    }
-}
-
-fn parse_schedule(s: &str) -> Result<NoiseSchedule, String> {
-    match s {
-        "linear" => Ok(NoiseSchedule::Linear),
-        "log_snr" => Ok(NoiseSchedule::LogSnr),
-        other => Err(format!("unknown schedule {other:?} (linear, log_snr)")),
-    }
-}
-
-fn parse_anchored_yaw(s: &str) -> Result<AnchoredYaw, String> {
-    match s {
-        "world" => Ok(AnchoredYaw::World),
-        "box" => Ok(AnchoredYaw::Box),
-        other => Err(format!("unknown anchored yaw {other:?} (world, box)")),
-    }
+/// A config enum from its name in config files (`x0`, `log_snr`, `box`, `fused`, …), so that the
+/// command line and config.json spell every choice alike.
+fn by_config_name<T: serde::de::DeserializeOwned>(s: &str) -> Result<T, String> {
+    serde_json::from_value(serde_json::Value::String(s.to_string())).map_err(|e| e.to_string())
 }
 
 /// The progress bar, and the model folder where each checkpoint's `loss.png` goes.

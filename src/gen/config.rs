@@ -107,6 +107,7 @@ pub enum Prediction {
     /// The noise ε; x̂₀ = (x_t − √(1 − ᾱ_t) ε̂) / √ᾱ_t. Its x̂₀ at the last steps is only as
     /// precise as ε̂ times √(1 − ᾱ_t) / √ᾱ_t allows (docs/RESULTS.md, "x₀-prediction").
     #[default]
+    #[serde(alias = "eps")]
     Epsilon,
     /// The clean tokens x₀ themselves (the loss is then on x₀, with the same weights).
     X0,

@@ -22,17 +22,6 @@ pub enum Engine {
     Candle,
 }
 
-impl std::str::FromStr for Engine {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Engine, String> {
-        match s {
-            "fused" => Ok(Engine::Fused),
-            "candle" => Ok(Engine::Candle),
-            _ => Err(format!("unknown engine {s:?} (fused, candle)")),
-        }
-    }
-}
-
 /// A gradient engine ready for one model's layout.
 #[derive(Debug)]
 pub enum Gradients {
