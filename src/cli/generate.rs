@@ -99,6 +99,9 @@ impl GuidanceArgs {
             anyhow::ensure!(scale.is_finite() && scale >= 0.0, "--guidance-scale: must be a non-negative number");
             cfg.scale = scale;
         }
+        if let (Some(problem), Some(file)) = (cfg.problem(), &self.guidance_config) {
+            anyhow::bail!("{}: {problem}", file.display());
+        }
         Ok(cfg)
     }
 }

@@ -154,6 +154,37 @@ impl GuidanceConfig {
         Ok(cfg)
     }
 
+    /// Most gradient steps per guided diffusion step a config may ask for (64 is the default; each
+    /// costs one evaluation of J per scene).
+    pub const MAX_ITERATIONS: usize = 1000;
+
+    /// Why the configuration cannot guide, if it cannot: a weight, γ or `phys` that is negative or
+    /// not finite, `anchored_mobility` outside 0..1, `max_step` not a positive distance, or
+    /// `iterations` above [`MAX_ITERATIONS`](Self::MAX_ITERATIONS).
+    pub fn problem(&self) -> Option<String> {
+        let weights = [
+            ("motion", self.motion),
+            ("bound", self.bound),
+            ("object", self.object),
+            ("contact", self.contact),
+            ("scale", self.scale),
+            ("phys", self.phys),
+        ];
+        if let Some((name, w)) = weights.iter().find(|(_, w)| !(w.is_finite() && *w >= 0.0)) {
+            return Some(format!("{name}: must be a non-negative number, not {w}"));
+        }
+        if !(0.0..=1.0).contains(&self.anchored_mobility) {
+            return Some(format!("anchored_mobility: must be within 0..1, not {}", self.anchored_mobility));
+        }
+        if let Some(step) = self.max_step.filter(|s| !(s.is_finite() && *s > 0.0)) {
+            return Some(format!("max_step: must be a positive distance in metres, not {step}"));
+        }
+        if self.iterations > Self::MAX_ITERATIONS {
+            return Some(format!("iterations: at most {}, not {}", Self::MAX_ITERATIONS, self.iterations));
+        }
+        None
+    }
+
     /// Whether any spatial term (J_m, J_b, J_o) is on.
     pub fn is_active(&self) -> bool {
         self.scale > 0.0 && (self.motion > 0.0 || self.bound > 0.0 || self.object > 0.0)
@@ -260,14 +291,32 @@ pub struct SceneMasks {
     /// Outside the floor plan.
     pub outside: Mask,
     /// The footprints of the contact boxes, in the scene's box order (box k anchors slot k).
-    pub contacts: Vec<Mask>,
+    pub contacts: Vec<Footprint>,
+}
+
+/// A contact box's footprint as pixels, with its area (counted once, not at every guided step).
+#[derive(Debug, Clone)]
+pub struct Footprint {
+    /// The pixels under the box.
+    pub mask: Mask,
+    /// Their area (m²).
+    pub area: f64,
+}
+
+impl Footprint {
+    /// The footprint of `b` in `window`.
+    pub fn of(window: &RoomWindow, b: &OBox) -> Footprint {
+        let mask = Mask::of_footprint(window, b);
+        let area = mask.count() as f64 * window.pixel_area();
+        Footprint { mask, area }
+    }
 }
 
 impl SceneMasks {
     /// The masks of `scene`.
     pub fn of(scene: &Scene) -> SceneMasks {
         let c = Conditions::of(scene);
-        let contacts = c.contact_boxes.iter().map(|b| Mask::of_footprint(&c.window, &b.obox)).collect();
+        let contacts = c.contact_boxes.iter().map(|b| Footprint::of(&c.window, &b.obox)).collect();
         SceneMasks { window: c.window, free: c.free_space, outside: c.floor.inverted(), contacts }
     }
 }
@@ -370,20 +419,20 @@ pub fn pairwise_overlap(objects: &[GuidedObject], overlap: Overlap) -> (f64, Vec
     (total, grads)
 }
 
-/// J_c: Σ over anchored objects of the soft area (m²) of their contact box's footprint mask that
+/// J_c: Σ over anchored objects of the soft area (m²) of their contact box's footprint that
 /// their own footprint leaves uncovered, with gradients. `boxes[i]` is object i's contact box
 /// footprint, `None` for a free piece.
 pub fn contact_shortfall(
     objects: &[GuidedObject],
-    boxes: &[Option<&Mask>],
+    boxes: &[Option<&Footprint>],
     window: &RoomWindow,
 ) -> (f64, Vec<ObjectGradient>) {
     let mut total = 0.0;
     let mut grads = vec![[0.0; 7]; objects.len()];
-    for ((o, mask), g) in objects.iter().zip(boxes).zip(&mut grads) {
-        if let Some(mask) = mask {
-            let (covered, cg) = soft_coverage(std::slice::from_ref(o), mask, window, |_| false);
-            total += mask.count() as f64 * window.pixel_area() - covered;
+    for ((o, footprint), g) in objects.iter().zip(boxes).zip(&mut grads) {
+        if let Some(footprint) = footprint {
+            let (covered, cg) = soft_coverage(std::slice::from_ref(o), &footprint.mask, window, |_| false);
+            total += footprint.area - covered;
             for k in 0..7 {
                 g[k] = -cg[0][k];
             }
@@ -422,7 +471,7 @@ pub fn guidance_cost(
         add(cfg.object, pairwise_overlap(objects, cfg.overlap));
     }
     if cfg.contact > 0.0 {
-        let boxes: Vec<Option<&Mask>> = anchors.iter().map(|a| a.and_then(|k| masks.contacts.get(k))).collect();
+        let boxes: Vec<Option<&Footprint>> = anchors.iter().map(|a| a.and_then(|k| masks.contacts.get(k))).collect();
         add(cfg.contact, contact_shortfall(objects, &boxes, &masks.window));
     }
     (total, grads)
@@ -445,13 +494,14 @@ pub struct SpatialGuidance {
 impl SpatialGuidance {
     /// Guidance for a batch of `scenes` (in batch order).
     pub fn new(cfg: GuidanceConfig, model: &ModelConfig, bounds: &Bounds, scenes: &[&Scene]) -> SpatialGuidance {
+        let masks: Vec<SceneMasks> = scenes.iter().map(|s| SceneMasks::of(s)).collect();
         SpatialGuidance {
             cfg,
             model: model.clone(),
             bounds: bounds.clone(),
-            masks: scenes.iter().map(|s| SceneMasks::of(s)).collect(),
+            anchored: masks.iter().map(|m| model.anchored_slots(m.contacts.len())).collect(),
+            masks,
             ceilings: scenes.iter().map(|s| s.floor_plan.height).collect(),
-            anchored: scenes.iter().map(|s| model.anchored_slots(Conditions::contact_boxes_of(s).len())).collect(),
             history: Vec::new(),
         }
     }
@@ -659,7 +709,7 @@ mod tests {
         // A 0.6 × 0.4 m contact box at (2, 2) and a 1 × 1 m piece covering it, then shifted so that
         // its edge cuts the box.
         let b = OBox::new(DVec3::new(2.0, 2.0, 0.5), DVec3::new(0.6, 0.4, 0.3), 0.0);
-        let mask = Mask::of_footprint(&w, &b);
+        let mask = Footprint::of(&w, &b);
         let piece = |x: f64| GuidedObject {
             center: DVec3::new(x, 2.0, 0.4),
             size: DVec3::new(1.0, 1.0, 0.8),
@@ -694,6 +744,20 @@ mod tests {
         assert!(!GuidanceConfig::parse("phys").unwrap().is_active());
         // Repair is not a guidance term.
         assert!(GuidanceConfig::parse("all,polish").unwrap_err().contains("polish"));
+    }
+
+    #[test]
+    fn configs_that_cannot_guide_say_why() {
+        assert_eq!(GuidanceConfig::all().problem(), None);
+        assert_eq!(GuidanceConfig::shade().problem(), None);
+        let bad = |c: GuidanceConfig| c.problem().unwrap();
+        assert!(bad(GuidanceConfig { bound: -1.0, ..GuidanceConfig::all() }).starts_with("bound:"));
+        assert!(bad(GuidanceConfig { scale: f64::NAN, ..GuidanceConfig::all() }).starts_with("scale:"));
+        assert!(bad(GuidanceConfig { max_step: Some(-0.03), ..GuidanceConfig::all() }).starts_with("max_step:"));
+        assert!(bad(GuidanceConfig { iterations: 1_000_000_000, ..GuidanceConfig::all() }).starts_with("iterations:"));
+        assert!(
+            bad(GuidanceConfig { anchored_mobility: 2.0, ..GuidanceConfig::all() }).starts_with("anchored_mobility:")
+        );
     }
 }
 
