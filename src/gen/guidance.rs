@@ -20,12 +20,13 @@
 //!
 //! Empty slots (largest class "empty") are left alone. The physics-feedback term lives elsewhere.
 
+use super::bodies::{BodyPoints, SupportNeed, body_penetration, support_shortfall};
 use super::tokens::decode_slots;
 use super::{Bounds, GenError, Guidance, ModelConfig};
 use crate::geom::{Mask, OBox, RoomWindow, intersection_volume, iou_3d};
-use crate::human::Conditions;
+use crate::human::{Conditions, ContactBox};
 use crate::physics::Physics;
-use crate::scene::{Object, Scene};
+use crate::scene::{Action, Category, Object, Scene};
 use candle_core::Tensor;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -55,6 +56,12 @@ pub struct GuidanceConfig {
     /// On whenever a spatial term is; 0 leaves anchored pieces free.
     #[serde(default = "GuidanceConfig::default_contact")]
     pub contact: f64,
+    /// Weight of J_p (people's body points inside pieces, metres of depth; [`super::bodies`]).
+    #[serde(default)]
+    pub body: f64,
+    /// Weight of J_s (a sitter's or sleeper's piece too low under them, metres; [`super::bodies`]).
+    #[serde(default)]
+    pub support: f64,
     /// Step size γ (token units per unit of weighted J gradient).
     pub scale: f64,
     /// Guide only at steps t < `until_step` (steps count down from T − 1 to 0).
@@ -77,9 +84,10 @@ pub struct GuidanceConfig {
 
 impl GuidanceConfig {
     /// All three spatial terms with the default settings, chosen on the val splits
-    /// (docs/RESULTS.md, "Guidance that converges"): J_b weighted 4, J_o as the share of the
-    /// smaller piece, J_c 4 holding the pieces under people (which otherwise move like any piece),
-    /// and in each of the last 20 steps up to 64 gradient steps of at most 3 cm.
+    /// (docs/RESULTS.md, "Guidance that converges" and "Bodies and support"): J_b weighted 4, J_o
+    /// as the share of the smaller piece, J_c 4 holding the pieces under people (which otherwise
+    /// move like any piece), J_p and J_s 1 keeping them out of the bodies and up against them, and
+    /// in each of the last 20 steps up to 64 gradient steps of at most 3 cm.
     pub fn all() -> GuidanceConfig {
         GuidanceConfig {
             motion: 1.0,
@@ -89,6 +97,8 @@ impl GuidanceConfig {
             max_step: Some(0.03),
             iterations: 64,
             contact: 4.0,
+            body: 1.0,
+            support: 1.0,
             scale: 0.1,
             until_step: 20,
             anchored_mobility: 1.0,
@@ -109,6 +119,8 @@ impl GuidanceConfig {
             max_step: None,
             iterations: 1,
             contact: 0.0,
+            body: 0.0,
+            support: 0.0,
             until_step: 100,
             anchored_mobility: 0.0,
             ..Self::all()
@@ -167,6 +179,8 @@ impl GuidanceConfig {
             ("bound", self.bound),
             ("object", self.object),
             ("contact", self.contact),
+            ("body", self.body),
+            ("support", self.support),
             ("scale", self.scale),
             ("phys", self.phys),
         ];
@@ -258,8 +272,10 @@ pub struct GuidedObject {
     pub size: DVec3,
     /// Yaw (rad).
     pub yaw: f64,
-    /// Hangs from the ceiling (left out of J_m).
+    /// Hangs from the ceiling (left out of J_m and J_p).
     pub hanging: bool,
+    /// Its category (its template's shape, for J_p).
+    pub category: Category,
 }
 
 impl GuidedObject {
@@ -270,10 +286,12 @@ impl GuidedObject {
             size: DVec3::from(o.size),
             yaw: o.yaw,
             hanging: o.category.is_hanging(),
+            category: o.category,
         }
     }
 
-    fn obox(&self) -> OBox {
+    /// Its box.
+    pub fn obox(&self) -> OBox {
         OBox::new(self.center, self.size, self.yaw)
     }
 }
@@ -292,6 +310,8 @@ pub struct SceneMasks {
     pub outside: Mask,
     /// The footprints of the contact boxes, in the scene's box order (box k anchors slot k).
     pub contacts: Vec<Footprint>,
+    /// The people's body points (J_p).
+    pub bodies: BodyPoints,
 }
 
 /// A contact box's footprint as pixels, with its area (counted once, not at every guided step).
@@ -301,14 +321,18 @@ pub struct Footprint {
     pub mask: Mask,
     /// Their area (m²).
     pub area: f64,
+    /// What a sitter or sleeper needs of the piece's height (J_s); `None` for a touch.
+    pub support: Option<SupportNeed>,
 }
 
 impl Footprint {
-    /// The footprint of `b` in `window`.
-    pub fn of(window: &RoomWindow, b: &OBox) -> Footprint {
-        let mask = Mask::of_footprint(window, b);
+    /// The footprint of contact box `b` in `window`.
+    pub fn of(window: &RoomWindow, b: &ContactBox) -> Footprint {
+        let mask = Mask::of_footprint(window, &b.obox);
         let area = mask.count() as f64 * window.pixel_area();
-        Footprint { mask, area }
+        let support = matches!(b.action, Action::Sit | Action::Lie)
+            .then(|| SupportNeed { at: b.obox.center.truncate(), height: b.obox.z_range().1 });
+        Footprint { mask, area, support }
     }
 }
 
@@ -316,8 +340,9 @@ impl SceneMasks {
     /// The masks of `scene`.
     pub fn of(scene: &Scene) -> SceneMasks {
         let c = Conditions::of(scene);
-        let contacts = c.contact_boxes.iter().map(|b| Footprint::of(&c.window, &b.obox)).collect();
-        SceneMasks { window: c.window, free: c.free_space, outside: c.floor.inverted(), contacts }
+        let contacts = c.contact_boxes.iter().map(|b| Footprint::of(&c.window, b)).collect();
+        let bodies = BodyPoints::of(&scene.humans);
+        SceneMasks { window: c.window, free: c.free_space, outside: c.floor.inverted(), contacts, bodies }
     }
 }
 
@@ -474,6 +499,14 @@ pub fn guidance_cost(
         let boxes: Vec<Option<&Footprint>> = anchors.iter().map(|a| a.and_then(|k| masks.contacts.get(k))).collect();
         add(cfg.contact, contact_shortfall(objects, &boxes, &masks.window));
     }
+    if cfg.body > 0.0 {
+        add(cfg.body, body_penetration(objects, &masks.bodies));
+    }
+    if cfg.support > 0.0 {
+        let needs: Vec<Option<SupportNeed>> =
+            anchors.iter().map(|a| a.and_then(|k| masks.contacts.get(k)).and_then(|f| f.support)).collect();
+        add(cfg.support, support_shortfall(objects, &needs));
+    }
     (total, grads)
 }
 
@@ -611,6 +644,7 @@ mod tests {
             size: DVec3::new(w, d, 0.8),
             yaw,
             hanging: false,
+            category: Category::Stool,
         };
         vec![o(0.3, 2.0, 1.0, 0.6, 0.4), o(2.0, 2.1, 1.6, 2.0, -0.3), o(2.9, 2.6, 0.5, 0.5, 1.1)]
     }
@@ -708,13 +742,19 @@ mod tests {
         let w = window();
         // A 0.6 × 0.4 m contact box at (2, 2) and a 1 × 1 m piece covering it, then shifted so that
         // its edge cuts the box.
-        let b = OBox::new(DVec3::new(2.0, 2.0, 0.5), DVec3::new(0.6, 0.4, 0.3), 0.0);
+        let b = ContactBox {
+            human: "h".into(),
+            action: Action::Sit,
+            frames: [0, 1],
+            obox: OBox::new(DVec3::new(2.0, 2.0, 0.5), DVec3::new(0.6, 0.4, 0.3), 0.0),
+        };
         let mask = Footprint::of(&w, &b);
         let piece = |x: f64| GuidedObject {
             center: DVec3::new(x, 2.0, 0.4),
             size: DVec3::new(1.0, 1.0, 0.8),
             yaw: 0.0,
             hanging: false,
+            category: Category::Stool,
         };
         let (covered, _) = contact_shortfall(&[piece(2.0)], &[Some(&mask)], &w);
         assert!(covered.abs() < 0.01 * 0.24, "covered box leaves {covered} m²");

@@ -8,6 +8,7 @@
 
 mod adamw;
 pub mod anchors;
+pub mod bodies;
 pub mod checkpoint;
 mod config;
 mod dataset;
