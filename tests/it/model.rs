@@ -291,36 +291,26 @@ fn bad_and_mismatched_checkpoints_give_one_error_line() {
     std::fs::copy(model.join("model.safetensors"), corrupt.join("model.safetensors")).unwrap();
     expect_error(run(&corrupt, "bedroom_rect.json"), "model.safetensors: ");
 
-    let bad_terms = shade_sim(&[
-        "generate",
-        "--input",
-        root().join("scenes/examples/bedroom_rect.json").to_str().unwrap(),
-        "--out",
-        dir.path().join("o").to_str().unwrap(),
-        "--model",
-        model.to_str().unwrap(),
-        "--guidance",
-        "mot,walls",
-    ]);
-    expect_error(bad_terms, "--guidance: unknown guidance term \"walls\"");
+    // The example bedroom with the test model and `guidance` flags.
+    let guided = |guidance: &[&str]| {
+        let input = root().join("scenes/examples/bedroom_rect.json");
+        let out = dir.path().join("o");
+        let mut args = vec!["generate", "--input", input.to_str().unwrap(), "--out", out.to_str().unwrap()];
+        args.extend(["--model", model.to_str().unwrap()]);
+        args.extend(guidance);
+        shade_sim(&args)
+    };
+    expect_error(guided(&["--guidance", "mot,walls"]), "--guidance: unknown guidance term \"walls\"");
 
     // A guidance config asking for a billion gradient steps per step (it hung) or a negative step
     // bound (it was taken) is refused before any work, naming the file.
     for (field, value) in [("iterations", "1000000000"), ("max_step", "-0.03")] {
         let file = dir.path().join(format!("guidance_{field}.json"));
-        std::fs::write(&file, format!("{{\"motion\": 1, \"bound\": 1, \"object\": 1, \"scale\": 0.1, \"until_step\": 20, \"{field}\": {value}}}")).unwrap();
-        let o = shade_sim(&[
-            "generate",
-            "--input",
-            root().join("scenes/examples/bedroom_rect.json").to_str().unwrap(),
-            "--out",
-            dir.path().join("o").to_str().unwrap(),
-            "--model",
-            model.to_str().unwrap(),
-            "--guidance-config",
-            file.to_str().unwrap(),
-        ]);
-        expect_error(o, &format!("{}: {field}: ", file.display()));
+        let config = format!(
+            "{{\"motion\": 1, \"bound\": 1, \"object\": 1, \"scale\": 0.1, \"until_step\": 20, \"{field}\": {value}}}"
+        );
+        std::fs::write(&file, config).unwrap();
+        expect_error(guided(&["--guidance-config", file.to_str().unwrap()]), &format!("{}: {field}: ", file.display()));
     }
 
     std::fs::write(corrupt.join("config.json"), "{ \"format\": ").unwrap();
