@@ -1,11 +1,15 @@
 //! J_p (ours): how deep the people's bodies are inside the pieces, as a guidance term.
 //!
 //! The pieces' shapes are their furniture templates (`furniture::template_of`: a chair's seat, back
-//! and legs, a bed's mattress and headboard), the bodies are surface points of every human at a few
-//! frames (`human::SurfaceSampler`), and J_p = Σ over points inside a piece of the depth beyond
-//! [`TOLERANCE`], each human's points weighted by one over its sampled frames (so a human counts
-//! like one frame of E_pen). Its gradient is a central difference of the exact value, for the
-//! pieces whose bounding box holds any point; the points are bucketed once per scene on a grid.
+//! and legs, a bed's mattress and headboard); the bodies are the bone capsules the physics check
+//! tests (`sim::check`), each as a row of balls along its bone no further apart than half its radius
+//! (at most a quarter of the radius shallower than the capsule, where its axis grazes a corner, and
+//! under 6 % where it stays half a radius off the piece), at every frame where the body
+//! has moved 10 cm. J_p = Σ over pieces and bones of the bone's depth inside the piece beyond
+//! [`CLEARANCE`] short of it (a bone's depth is its deepest ball's: the capsule's depth, which is
+//! what the check measures), summed over the sampled frames; a bone resting on a seat's top costs
+//! only when it is inside. Its gradient is a central difference of the exact value over the balls
+//! near the piece; the balls are bucketed once per scene on a grid.
 //!
 //! J_s (ours) is its other half, support: for a piece anchored to a sitter's or a sleeper's contact
 //! box, how far the top of the piece's parts under the box's centre stays below the box's top (the
@@ -14,64 +18,73 @@
 
 use super::guidance::{GuidedObject, ObjectGradient};
 use crate::furniture::{Part, PartRole, template_of};
-use crate::human::SurfaceSampler;
 use crate::scene::Human;
 use glam::{DVec2, DVec3};
 use std::collections::HashMap;
 
-/// Depth (m) a body point may reach inside a piece before it costs (the physics check allows 2 cm).
-pub const TOLERANCE: f64 = 0.01;
+/// How far (m) bones are kept from pieces, except where they rest on a seat's top (the physics
+/// check allows 2 cm of depth; the guidance stops short of contact, where its pull is weakest).
+pub const CLEARANCE: f64 = 0.01;
 /// How far (m) a seat's top may stay below the body resting on it (the physics check allows 5 cm).
 pub const SUPPORT_TOLERANCE: f64 = 0.02;
-/// Frames sampled per human, evenly over its clip, besides the middle of each contact span.
-const FRAMES: usize = 8;
-/// Surface points per body and frame.
-const POINTS: usize = 150;
-/// Side (m) of the grid the points are bucketed on.
+/// A human's frames are sampled wherever some joint has moved this far (m) since the last sampled
+/// frame (and at the middle of each contact span).
+const STRIDE: f64 = 0.1;
+/// How far (m) a part may move under the central differences' steps (1 mm of size or centre, a
+/// milliradian of yaw at up to 3 m from the centre).
+const DIFFERENCE_MARGIN: f64 = 0.005;
+/// Side (m) of the grid the balls are bucketed on.
 const CELL: f64 = 0.25;
 
-/// The body points of one scene, bucketed on a horizontal grid.
-#[derive(Debug, Clone, Default)]
-pub struct BodyPoints {
-    cells: HashMap<(i32, i32), Vec<(DVec3, f64)>>,
+/// One ball of a bone capsule at one frame.
+#[derive(Debug, Clone, Copy)]
+struct Ball {
+    center: DVec3,
+    radius: f64,
+    /// Which bone of which human it belongs to (numbered per scene).
+    bone: u32,
 }
 
-impl BodyPoints {
-    /// The points of `humans` (a scene's).
-    pub fn of(humans: &[Human]) -> BodyPoints {
-        let mut cells: HashMap<(i32, i32), Vec<(DVec3, f64)>> = HashMap::new();
+/// The bodies of one scene as balls along their bones, bucketed on a horizontal grid by centre.
+#[derive(Debug, Clone, Default)]
+pub struct BodyBalls {
+    cells: HashMap<(i32, i32), Vec<Ball>>,
+    /// The largest radius (m): a ball reaches this far beyond its cell.
+    reach: f64,
+}
+
+impl BodyBalls {
+    /// The balls of `humans` (a scene's).
+    pub fn of(humans: &[Human]) -> BodyBalls {
+        let mut out = BodyBalls::default();
+        let mut bones = 0u32;
         for human in humans {
-            let n = human.frames.len();
-            if n == 0 {
-                continue;
-            }
-            let mut frames: Vec<usize> = (0..FRAMES.min(n)).map(|i| i * n / FRAMES.min(n)).collect();
-            frames.extend(human.contact_spans().map(|s| (s.start + s.end) / 2));
-            frames.sort_unstable();
-            frames.dedup();
-            let reference: Vec<DVec3> = human.frame(0).collect();
-            let sampler = SurfaceSampler::new(&human.skeleton, &reference, POINTS);
-            let weight = 1.0 / frames.len() as f64;
-            for f in frames {
+            for f in sampled_frames(human) {
                 let joints: Vec<DVec3> = human.frame(f).collect();
-                for p in sampler.points(&human.skeleton, &joints) {
-                    cells.entry(cell_of(p.truncate())).or_default().push((p, weight));
+                bones += human.skeleton.bones.len() as u32;
+                for (k, bone) in human.skeleton.bones.iter().enumerate() {
+                    out.reach = out.reach.max(bone.radius);
+                    for ball in balls_along(joints[bone.a], joints[bone.b], bone.radius, bones + k as u32) {
+                        out.cells.entry(cell_of(ball.center.truncate())).or_default().push(ball);
+                    }
                 }
             }
         }
-        BodyPoints { cells }
+        out
     }
 
-    /// The points within the horizontal rectangle `min`..`max`.
-    fn within(&self, min: DVec2, max: DVec2) -> Vec<(DVec3, f64)> {
+    /// The balls that may reach into the horizontal rectangle `min`..`max`.
+    fn within(&self, min: DVec2, max: DVec2) -> Vec<Ball> {
+        let (min, max) = (min - self.reach, max + self.reach);
         let (lo, hi) = (cell_of(min), cell_of(max));
         let mut out = Vec::new();
         for i in lo.0..=hi.0 {
             for j in lo.1..=hi.1 {
-                if let Some(points) = self.cells.get(&(i, j)) {
-                    out.extend(
-                        points.iter().filter(|(p, _)| p.x >= min.x && p.y >= min.y && p.x <= max.x && p.y <= max.y),
-                    );
+                if let Some(balls) = self.cells.get(&(i, j)) {
+                    out.extend(balls.iter().filter(|b| {
+                        let c = b.center;
+                        c.x >= min.x && c.y >= min.y && c.x <= max.x && c.y <= max.y
+                    }));
                 }
             }
         }
@@ -79,44 +92,87 @@ impl BodyPoints {
     }
 }
 
+/// The balls of a capsule from `a` to `b`: centres on the segment, no more than half the radius
+/// apart, ends included.
+fn balls_along(a: DVec3, b: DVec3, radius: f64, bone: u32) -> impl Iterator<Item = Ball> {
+    let gaps = (a.distance(b) / (0.5 * radius)).ceil().max(1.0) as usize;
+    (0..=gaps).map(move |i| Ball { center: a.lerp(b, i as f64 / gaps as f64), radius, bone })
+}
+
+/// The frames of `human` J_p looks at: the first and the last, each one where some joint has moved
+/// [`STRIDE`] since the previous one taken, and the middle of each contact span.
+fn sampled_frames(human: &Human) -> Vec<usize> {
+    let n = human.frames.len();
+    if n == 0 {
+        return Vec::new();
+    }
+    let mut frames = vec![0];
+    let mut last: Vec<DVec3> = human.frame(0).collect();
+    for f in 1..n {
+        let joints: Vec<DVec3> = human.frame(f).collect();
+        if f == n - 1 || joints.iter().zip(&last).any(|(p, q)| p.distance(*q) >= STRIDE) {
+            frames.push(f);
+            last = joints;
+        }
+    }
+    frames.extend(human.contact_spans().map(|s| ((s.start + s.end) / 2).min(n - 1)));
+    frames.sort_unstable();
+    frames.dedup();
+    frames
+}
+
 fn cell_of(p: DVec2) -> (i32, i32) {
     ((p.x / CELL).floor() as i32, (p.y / CELL).floor() as i32)
 }
 
-/// J_p of one piece against `points`: Σ weight · (depth − [`TOLERANCE`]) over the points deeper
-/// than that inside its template.
-fn piece_cost(o: &GuidedObject, points: &[(DVec3, f64)]) -> f64 {
-    let parts = template_of(o.category, &o.obox()).parts;
-    points
-        .iter()
-        .map(|&(p, w)| {
-            let depth = parts.iter().map(|part| depth_inside(part, p)).fold(0.0, f64::max);
-            w * (depth - TOLERANCE).max(0.0)
-        })
-        .sum()
+/// How far any ball of `balls` reaches within [`CLEARANCE`] of the piece's template (negative:
+/// how far it stays beyond).
+fn deepest_part(parts: &[Part], ball: &Ball) -> f64 {
+    parts.iter().map(|part| ball_depth(part, ball)).fold(f64::NEG_INFINITY, f64::max)
 }
 
-/// How deep `p` is inside `part` (0 outside): the distance to its nearest face, but a seat (a bed's
-/// mattress, a sofa's seat block, a stool's seat) is left through its top or sides only. A body
-/// rests on a seat from above, so a sitter's thighs inside a seat too high ask for a lower seat,
-/// not one pushed up through them.
-fn depth_inside(part: &Part, p: DVec3) -> f64 {
-    let l = part.obox.to_local(p);
-    let h = part.obox.half();
-    let (x, y) = (h.x - l.x.abs(), h.y - l.y.abs());
-    let (top, bottom) = (h.z - l.z, h.z + l.z);
-    if x <= 0.0 || y <= 0.0 || top <= 0.0 || bottom <= 0.0 {
-        return 0.0;
+/// J_p of one piece against `balls`: Σ over bones of how far they reach within [`CLEARANCE`] of
+/// its template, a bone's reach being its deepest ball's at that frame — one term per bone, frame
+/// and piece, so a long bone along a surface counts no more than a short one.
+fn piece_cost(o: &GuidedObject, balls: &[Ball]) -> f64 {
+    let parts = template_of(o.category, &o.obox()).parts;
+    let mut deepest: HashMap<u32, f64> = HashMap::new();
+    for b in balls {
+        let over = deepest_part(&parts, b);
+        if over > 0.0 {
+            let d = deepest.entry(b.bone).or_insert(0.0);
+            *d = d.max(over);
+        }
     }
-    match part.role {
-        PartRole::Seat => x.min(y).min(top),
-        _ => x.min(y).min(top).min(bottom),
+    deepest.values().sum()
+}
+
+/// How deep `ball` reaches into `part` plus [`CLEARANCE`] (negative when further apart): its
+/// radius less its centre's distance to the part, or plus its centre's depth inside. A seat (a
+/// bed's mattress, a sofa's seat block, a stool's seat) is left through its top or sides only, and
+/// a ball on or in it from above needs no clearance: a body rests on a seat, so a sitter's thighs
+/// inside a seat too high ask for a lower seat by their depth, not one pushed up through them.
+fn ball_depth(part: &Part, ball: &Ball) -> f64 {
+    let l = part.obox.to_local(ball.center);
+    let h = part.obox.half();
+    let seat = part.role == PartRole::Seat;
+    let outside = (l.abs() - h).max(DVec3::ZERO);
+    if outside != DVec3::ZERO {
+        let resting = seat && outside.x == 0.0 && outside.y == 0.0 && l.z > 0.0;
+        return ball.radius - outside.length() + if resting { 0.0 } else { CLEARANCE };
+    }
+    let sides = (h.x - l.x.abs()).min(h.y - l.y.abs());
+    let (top, bottom) = (h.z - l.z, h.z + l.z);
+    match seat {
+        true if top <= sides => ball.radius + top,
+        true => ball.radius + CLEARANCE + sides,
+        false => ball.radius + CLEARANCE + sides.min(top).min(bottom),
     }
 }
 
 /// Σ over pieces of J_p, with central-difference gradients (centre x, y, size, yaw; the height of a
 /// standing piece follows its size).
-pub fn body_penetration(objects: &[GuidedObject], bodies: &BodyPoints) -> (f64, Vec<ObjectGradient>) {
+pub fn body_penetration(objects: &[GuidedObject], bodies: &BodyBalls) -> (f64, Vec<ObjectGradient>) {
     let mut total = 0.0;
     let mut grads = vec![[0.0; 7]; objects.len()];
     for (o, g) in objects.iter().zip(&mut grads) {
@@ -125,13 +181,20 @@ pub fn body_penetration(objects: &[GuidedObject], bodies: &BodyPoints) -> (f64, 
         }
         let reach = DVec2::splat(o.size.x.hypot(o.size.y) * 0.5 + 0.01);
         let c = o.center.truncate();
-        let points = bodies.within(c - reach, c + reach);
-        let cost = piece_cost(o, &points);
+        let parts = template_of(o.category, &o.obox()).parts;
+        // Only balls within a few millimetres of costing can change the cost as the gradient's
+        // central differences move the piece.
+        let balls: Vec<Ball> = bodies
+            .within(c - reach, c + reach)
+            .into_iter()
+            .filter(|b| deepest_part(&parts, b) > -DIFFERENCE_MARGIN)
+            .collect();
+        let cost = piece_cost(o, &balls);
         if cost <= 0.0 {
             continue;
         }
         total += cost;
-        *g = central_differences(o, |moved| piece_cost(moved, &points));
+        *g = central_differences(o, |moved| piece_cost(moved, &balls));
     }
     (total, grads)
 }
@@ -205,11 +268,11 @@ mod tests {
     use crate::scene::{Action, Category};
 
     /// One sitter on a 0.45 m seat at the origin.
-    fn sitter(seat: f64) -> BodyPoints {
+    fn sitter(seat: f64) -> BodyBalls {
         let body = Body::default();
         let mut m = Motion::new(body, 30.0);
         m.hold(sit(&body, DVec2::new(0.0, -0.05), seat, 0.0), 4, Action::Sit);
-        BodyPoints::of(&[m.into_human("h0")])
+        BodyBalls::of(&[m.into_human("h0")])
     }
 
     fn stool(height: f64) -> GuidedObject {
@@ -225,7 +288,7 @@ mod tests {
     #[test]
     fn a_seat_under_its_sitter_costs_nothing_and_a_high_one_is_lowered() {
         let bodies = sitter(0.45);
-        assert_eq!(body_penetration(&[stool(0.45)], &bodies).0, 0.0);
+        assert!(body_penetration(&[stool(0.45)], &bodies).0 < 1e-9);
         // 3 to 13 cm too high, the thighs are inside the 5 cm seat slab, and at every height a lower
         // stool costs less: a seat is left through its top, never pushed up through the body.
         for height in [0.48, 0.50, 0.52, 0.55, 0.58] {
@@ -237,6 +300,67 @@ mod tests {
         let mut away = stool(0.55);
         away.center.x += 1.0;
         assert_eq!(body_penetration(&[away], &bodies).0, 0.0);
+    }
+
+    #[test]
+    fn a_row_of_balls_is_as_deep_as_the_checks_capsule() {
+        use crate::physics::Owner;
+        use crate::sim::{Solid, capsule_depth};
+        let wardrobe = GuidedObject {
+            center: DVec3::new(0.0, 0.0, 1.0),
+            size: DVec3::new(1.2, 0.6, 2.0),
+            yaw: 0.3,
+            hanging: false,
+            category: Category::Wardrobe,
+        };
+        let parts = template_of(wardrobe.category, &wardrobe.obox()).parts;
+        let solids: Vec<Solid> = parts.iter().map(|p| Solid::new(Owner::Object(0), p.obox)).collect();
+        let mut compared = 0;
+        for i in 0..200 {
+            // Shins and thighs (radius 5–7 cm) at spread positions and slants around the front face.
+            let t = i as f64 * 0.61803;
+            let a = DVec3::new((t * 7.0).sin() * 0.7, (t * 3.0).cos() * 0.45, 0.1 + (t * 5.0).sin().abs() * 1.5);
+            let b = a + DVec3::new((t * 11.0).cos() * 0.3, 0.25, (t * 13.0).sin() * 0.3);
+            let radius = 0.05 + 0.02 * (t * 17.0).sin().abs();
+            let check = solids.iter().map(|s| capsule_depth(a, b, radius, s)).fold(0.0, f64::max);
+            let balls =
+                balls_along(a, b, radius, 0).map(|ball| deepest_part(&parts, &ball) - CLEARANCE).fold(0.0, f64::max);
+            // The row's union lies inside the capsule: never deeper than it.
+            assert!(balls <= check + 1e-4, "{i}: balls {balls}, capsule {check}");
+            // While the bone's axis is outside the piece, at distance d = radius − depth, the check's
+            // depth is the radius less d, and the row of balls (spaced ≤ radius / 2) misses at most
+            // √(d² + (radius / 4)²) − d of it, where the axis passes the piece's nearest point between
+            // two balls. Deeper, the check measures how far the whole capsule must move to get out.
+            if check > 0.0 && check < radius {
+                compared += 1;
+                let d = radius - check;
+                let miss = (d * d + radius * radius / 16.0).sqrt() - d;
+                assert!(balls >= check - miss - 1e-4, "{i}: balls {balls}, capsule {check}");
+            }
+        }
+        assert!(compared > 20, "only {compared} capsules grazed the wardrobe");
+    }
+
+    #[test]
+    fn bones_are_kept_clear_of_pieces_except_on_a_seats_top() {
+        let bodies = sitter(0.45);
+        // The front of the sitter's shins and feet (their balls' furthest reach along +y).
+        let front = bodies.cells.values().flatten().map(|b| b.center.y + b.radius).fold(f64::MIN, f64::max);
+        // A wardrobe 5 mm in front of them costs (clearance); 2 cm away, nothing.
+        let near = GuidedObject {
+            center: DVec3::new(0.0, front + 0.005 + 0.3, 1.0),
+            size: DVec3::new(1.0, 0.6, 2.0),
+            yaw: 0.0,
+            hanging: false,
+            category: Category::Wardrobe,
+        };
+        let mut far = near;
+        far.center.y += 0.015;
+        let (cost, _) = body_penetration(&[near], &bodies);
+        assert!(cost > 0.0, "{cost}");
+        assert_eq!(body_penetration(&[far], &bodies).0, 0.0);
+        // A seat 5 mm under the sitter's resting thighs costs nothing: no clearance on a seat's top.
+        assert!(body_penetration(&[stool(0.445)], &bodies).0 < 1e-9);
     }
 
     #[test]

@@ -20,7 +20,7 @@
 //!
 //! Empty slots (largest class "empty") are left alone. The physics-feedback term lives elsewhere.
 
-use super::bodies::{BodyPoints, SupportNeed, body_penetration, support_shortfall};
+use super::bodies::{BodyBalls, SupportNeed, body_penetration, support_shortfall};
 use super::tokens::decode_slots;
 use super::{Bounds, GenError, Guidance, ModelConfig};
 use crate::geom::{Mask, OBox, RoomWindow, intersection_volume, iou_3d};
@@ -56,7 +56,7 @@ pub struct GuidanceConfig {
     /// On whenever a spatial term is; 0 leaves anchored pieces free.
     #[serde(default = "GuidanceConfig::default_contact")]
     pub contact: f64,
-    /// Weight of J_p (people's body points inside pieces, metres of depth; [`super::bodies`]).
+    /// Weight of J_p (people's bones inside pieces, metres of depth; [`super::bodies`]).
     #[serde(default)]
     pub body: f64,
     /// Weight of J_s (a sitter's or sleeper's piece too low under them, metres; [`super::bodies`]).
@@ -310,8 +310,8 @@ pub struct SceneMasks {
     pub outside: Mask,
     /// The footprints of the contact boxes, in the scene's box order (box k anchors slot k).
     pub contacts: Vec<Footprint>,
-    /// The people's body points (J_p).
-    pub bodies: BodyPoints,
+    /// The people's bones as balls (J_p).
+    pub bodies: BodyBalls,
 }
 
 /// A contact box's footprint as pixels, with its area (counted once, not at every guided step).
@@ -341,7 +341,7 @@ impl SceneMasks {
     pub fn of(scene: &Scene) -> SceneMasks {
         let c = Conditions::of(scene);
         let contacts = c.contact_boxes.iter().map(|b| Footprint::of(&c.window, b)).collect();
-        let bodies = BodyPoints::of(&scene.humans);
+        let bodies = BodyBalls::of(&scene.humans);
         SceneMasks { window: c.window, free: c.free_space, outside: c.floor.inverted(), contacts, bodies }
     }
 }
