@@ -221,19 +221,19 @@ fn support_gap(o: &GuidedObject, need: &SupportNeed) -> f64 {
     if top.is_finite() { (need.height - SUPPORT_TOLERANCE - top).max(0.0) } else { 0.0 }
 }
 
-/// Σ over anchored pieces of J_s; `needs[i]` is what piece i's person needs, `None` for free
-/// pieces and touched ones. Gradients as [`body_penetration`]'s.
-pub fn support_shortfall(objects: &[GuidedObject], needs: &[Option<SupportNeed>]) -> (f64, Vec<ObjectGradient>) {
+/// Σ over anchored pieces of J_s; `needs[i]` is what piece i's sitters and sleepers need (none for
+/// free pieces and touched ones). Gradients as [`body_penetration`]'s.
+pub fn support_shortfall(objects: &[GuidedObject], needs: &[Vec<SupportNeed>]) -> (f64, Vec<ObjectGradient>) {
     let mut total = 0.0;
     let mut grads = vec![[0.0; 7]; objects.len()];
-    for ((o, need), g) in objects.iter().zip(needs).zip(&mut grads) {
-        let Some(need) = need else { continue };
-        let gap = support_gap(o, need);
-        if gap <= 0.0 {
+    for ((o, needs), g) in objects.iter().zip(needs).zip(&mut grads) {
+        let gap = |o: &GuidedObject| needs.iter().map(|need| support_gap(o, need)).sum::<f64>();
+        let here = gap(o);
+        if here <= 0.0 {
             continue;
         }
-        total += gap;
-        *g = central_differences(o, |moved| support_gap(moved, need));
+        total += here;
+        *g = central_differences(o, gap);
     }
     (total, grads)
 }
@@ -367,14 +367,14 @@ mod tests {
     fn a_low_seat_is_raised_towards_its_sitter() {
         let need = SupportNeed { at: DVec2::ZERO, height: 0.45 };
         // A stool's seat is its top: 10 cm short costs 8 cm (2 cm are tolerated); 1 cm short nothing.
-        let (gap, grads) = support_shortfall(&[stool(0.35)], &[Some(need)]);
+        let (gap, grads) = support_shortfall(&[stool(0.35)], &[vec![need]]);
         assert!((gap - 0.08).abs() < 1e-9, "{gap}");
         assert!(grads[0][5] < -0.9, "growing it closes the gap: {}", grads[0][5]);
-        assert_eq!(support_shortfall(&[stool(0.44)], &[Some(need)]).0, 0.0);
+        assert_eq!(support_shortfall(&[stool(0.44)], &[vec![need]]).0, 0.0);
         // Nothing of it under the box, or a free piece: J_c's business, not this term's.
         let mut beside = stool(0.35);
         beside.center.x += 1.0;
-        assert_eq!(support_shortfall(&[beside], &[Some(need)]).0, 0.0);
-        assert_eq!(support_shortfall(&[stool(0.35)], &[None]).0, 0.0);
+        assert_eq!(support_shortfall(&[beside], &[vec![need]]).0, 0.0);
+        assert_eq!(support_shortfall(&[stool(0.35)], &[vec![]]).0, 0.0);
     }
 }

@@ -21,7 +21,7 @@
 //! Empty slots (largest class "empty") are left alone. The physics-feedback term lives elsewhere.
 
 use super::bodies::{BodyBalls, SupportNeed, body_penetration, support_shortfall};
-use super::tokens::decode_slots;
+use super::tokens::{CLASS_OFFSET, decode_slots};
 use super::{Bounds, GenError, Guidance, ModelConfig};
 use crate::geom::{Mask, OBox, RoomWindow, intersection_volume, iou_3d};
 use crate::human::{Conditions, ContactBox};
@@ -444,33 +444,33 @@ pub fn pairwise_overlap(objects: &[GuidedObject], overlap: Overlap) -> (f64, Vec
     (total, grads)
 }
 
-/// J_c: Σ over anchored objects of the soft area (m²) of their contact box's footprint that
-/// their own footprint leaves uncovered, with gradients. `boxes[i]` is object i's contact box
-/// footprint, `None` for a free piece.
+/// J_c: Σ over anchored objects of the soft area (m²) of their contact boxes' footprints that
+/// their own footprint leaves uncovered, with gradients. `boxes[i]` are the footprints of the
+/// boxes object i serves (several for a sofa in several sitters' slots; none for a free piece).
 pub fn contact_shortfall(
     objects: &[GuidedObject],
-    boxes: &[Option<&Footprint>],
+    boxes: &[Vec<&Footprint>],
     window: &RoomWindow,
 ) -> (f64, Vec<ObjectGradient>) {
     let mut total = 0.0;
     let mut grads = vec![[0.0; 7]; objects.len()];
-    for ((o, footprint), g) in objects.iter().zip(boxes).zip(&mut grads) {
-        if let Some(footprint) = footprint {
+    for ((o, footprints), g) in objects.iter().zip(boxes).zip(&mut grads) {
+        for footprint in footprints {
             let (covered, cg) = soft_coverage(std::slice::from_ref(o), &footprint.mask, window, |_| false);
             total += footprint.area - covered;
             for k in 0..7 {
-                g[k] = -cg[0][k];
+                g[k] -= cg[0][k];
             }
         }
     }
     (total, grads)
 }
 
-/// The weighted J of one scene's objects and its gradient; `anchors[i]` is the contact box object
-/// i is anchored to, if any.
+/// The weighted J of one scene's objects and its gradient; `anchors[i]` are the contact boxes
+/// object i is anchored to (the anchored slots that hold it).
 pub fn guidance_cost(
     objects: &[GuidedObject],
-    anchors: &[Option<usize>],
+    anchors: &[Vec<usize>],
     masks: &SceneMasks,
     cfg: &GuidanceConfig,
 ) -> (f64, Vec<ObjectGradient>) {
@@ -496,15 +496,18 @@ pub fn guidance_cost(
         add(cfg.object, pairwise_overlap(objects, cfg.overlap));
     }
     if cfg.contact > 0.0 {
-        let boxes: Vec<Option<&Footprint>> = anchors.iter().map(|a| a.and_then(|k| masks.contacts.get(k))).collect();
+        let boxes: Vec<Vec<&Footprint>> =
+            anchors.iter().map(|a| a.iter().filter_map(|&k| masks.contacts.get(k)).collect()).collect();
         add(cfg.contact, contact_shortfall(objects, &boxes, &masks.window));
     }
     if cfg.body > 0.0 {
         add(cfg.body, body_penetration(objects, &masks.bodies));
     }
     if cfg.support > 0.0 {
-        let needs: Vec<Option<SupportNeed>> =
-            anchors.iter().map(|a| a.and_then(|k| masks.contacts.get(k)).and_then(|f| f.support)).collect();
+        let needs: Vec<Vec<SupportNeed>> = anchors
+            .iter()
+            .map(|a| a.iter().filter_map(|&k| masks.contacts.get(k).and_then(|f| f.support)).collect())
+            .collect();
         add(cfg.support, support_shortfall(objects, &needs));
     }
     (total, grads)
@@ -583,11 +586,12 @@ fn guide_item(
 ) -> f64 {
     let dim = model.token_dim();
     let decoded = decode_slots(tokens, masks.window.center, ceiling, bounds, model);
-    let slots: Vec<usize> = decoded.iter().map(|(slot, _)| *slot).collect();
     let objects: Vec<GuidedObject> = decoded.iter().map(|(_, o)| GuidedObject::of(o)).collect();
-    let anchors: Vec<Option<usize>> = slots.iter().map(|&s| (s < anchored).then_some(s)).collect();
+    let anchors: Vec<Vec<usize>> =
+        decoded.iter().map(|(slots, _)| slots.iter().copied().filter(|&s| s < anchored).collect()).collect();
     let (j, grads) = guidance_cost(&objects, &anchors, masks, cfg);
-    for (&slot, g) in slots.iter().zip(&grads) {
+    for ((held_in, _), g) in decoded.iter().zip(&grads) {
+        let slot = held_in[0];
         let t = &mut tokens[slot * dim..(slot + 1) * dim];
         let step = token_gradient(t, g, bounds);
         let mut scale = if slot < anchored { cfg.scale * cfg.anchored_mobility } else { cfg.scale };
@@ -603,6 +607,12 @@ fn guide_item(
         }
         for (x, s) in t.iter_mut().zip(step) {
             *x = (*x - (scale * s) as f32).clamp(-1.0, 1.0);
+        }
+        // The slots holding copies of the piece (a sofa in each of its sitters' slots) take its new
+        // place and size: one piece, guided once, as the training data has it in every slot.
+        let guided: [f32; CLASS_OFFSET] = t[..CLASS_OFFSET].try_into().expect("a token has a centre, size and yaw");
+        for &copy in &held_in[1..] {
+            tokens[copy * dim..copy * dim + CLASS_OFFSET].copy_from_slice(&guided);
         }
     }
     j
@@ -756,20 +766,20 @@ mod tests {
             hanging: false,
             category: Category::Stool,
         };
-        let (covered, _) = contact_shortfall(&[piece(2.0)], &[Some(&mask)], &w);
+        let (covered, _) = contact_shortfall(&[piece(2.0)], &[vec![&mask]], &w);
         assert!(covered.abs() < 0.01 * 0.24, "covered box leaves {covered} m²");
         // Centred at x = 1.5 the piece ends at x = 2.0: the box's half beyond (0.3 × 0.4 m) is
         // uncovered, and each metre the piece moves towards it uncovers 0.4 m² less.
         let objs = [piece(1.5)];
-        let (half, grads) = contact_shortfall(&objs, &[Some(&mask)], &w);
+        let (half, grads) = contact_shortfall(&objs, &[vec![&mask]], &w);
         assert!((half - 0.12).abs() < 0.01, "{half}");
         let h = 1e-4;
-        let shifted = |d: f64| contact_shortfall(&[piece(1.5 + d)], &[Some(&mask)], &w).0;
+        let shifted = |d: f64| contact_shortfall(&[piece(1.5 + d)], &[vec![&mask]], &w).0;
         let fd = (shifted(h) - shifted(-h)) / (2.0 * h);
         assert!((fd - grads[0][0]).abs() < 1e-3 * (1.0 + fd.abs()), "fd {fd} analytic {}", grads[0][0]);
         // Moving the piece towards the box (+x) uncovers less; a free piece costs nothing.
         assert!(grads[0][0] < -0.3);
-        assert_eq!(contact_shortfall(&objs, &[None], &w).0, 0.0);
+        assert_eq!(contact_shortfall(&objs, &[vec![]], &w).0, 0.0);
     }
 
     #[test]
@@ -852,6 +862,36 @@ mod batch_tests {
     }
 
     #[test]
+    fn a_piece_held_in_two_slots_is_guided_once_and_its_copy_follows() {
+        let mut scene = generate_room(RoomType::Bedroom, 2, 1, false).scene;
+        let cfg = ModelConfig { anchor_scale: 0.0, ..ModelConfig::tiny(RoomType::Bedroom) };
+        let mut stats = SplitStats::default();
+        stats.add(&scene);
+        let bounds = Bounds::from_stats(&stats);
+        // One piece 40 cm through the wall at x = min x, in slot 0 and again, a centimetre off, in
+        // slot 1 (as a sofa is in each of its sitters' slots).
+        let (min, _) = scene.floor_plan.polygon().bounds();
+        scene.objects.truncate(1);
+        scene.objects[0].center[0] = min.x + 0.1;
+        scene.objects[0].yaw = 0.0;
+        let masks = SceneMasks::of(&scene);
+        let (mut tok, _) = tokens::encode(&scene, masks.window.center, &[], &bounds, &cfg);
+        let dim = cfg.token_dim();
+        let first: Vec<f32> = tok[..dim].to_vec();
+        tok[dim..2 * dim].copy_from_slice(&first);
+        tok[dim] += 0.01 / (bounds.center_max[0] - bounds.center_min[0]) as f32;
+        assert_eq!(tokens::decode(&tok, masks.window.center, 2.6, &bounds, &cfg).len(), 1, "one piece");
+        let x0 = Tensor::from_vec(tok.clone(), (1, cfg.slots(), dim), &candle_core::Device::Cpu).unwrap();
+        // The wall alone moves it (the people in the room would push it too).
+        let walls = GuidanceConfig { motion: 0.0, object: 0.0, body: 0.0, ..GuidanceConfig::all() };
+        let mut g = SpatialGuidance::new(walls, &cfg, &bounds, &[&scene]);
+        let out = g.guide(&x0, 0).unwrap().flatten_all().unwrap().to_vec1::<f32>().unwrap();
+        assert!(out[0] > tok[0] + 0.01, "the piece moved out of the wall: {} → {}", tok[0], out[0]);
+        assert_eq!(out[..CLASS_OFFSET], out[dim..dim + CLASS_OFFSET], "the copy took the piece's place");
+        assert_eq!(tokens::decode(&out, masks.window.center, 2.6, &bounds, &cfg).len(), 1, "still one piece");
+    }
+
+    #[test]
     fn the_contact_term_pulls_an_anchored_piece_back_under_its_person() {
         let mut scene = generate_room(RoomType::Bedroom, 2, 1, false).scene;
         let boxes = Conditions::contact_boxes_of(&scene);
@@ -874,7 +914,7 @@ mod batch_tests {
         let x0 = Tensor::from_vec(tok, (1, cfg.slots(), cfg.token_dim()), &candle_core::Device::Cpu).unwrap();
         let shortfall = |tokens: &[f32]| {
             let piece = GuidedObject::of(&tokens::decode(tokens, masks.window.center, 2.6, &bounds, &cfg)[0]);
-            contact_shortfall(&[piece], &[Some(&masks.contacts[0])], &masks.window).0
+            contact_shortfall(&[piece], &[vec![&masks.contacts[0]]], &masks.window).0
         };
         let before = shortfall(&x0.flatten_all().unwrap().to_vec1::<f32>().unwrap());
         // Only J_c can move the lone piece (J_o has no pair; J_m and J_b off).

@@ -123,14 +123,16 @@ impl Guidance for PhysicsGuidance {
                 scene.objects = slots.iter().map(|(_, o)| o.clone()).collect();
                 let moves = physics_displacements(&scene, self.physics.as_ref());
                 let mut count = 0;
-                for ((slot, _), m) in slots.iter().zip(moves) {
+                for ((held_in, _), m) in slots.iter().zip(moves) {
                     if m == DVec2::ZERO {
                         continue;
                     }
                     count += 1;
-                    let t = &mut tokens[slot * dim..];
-                    t[0] = (t[0] + (self.weight * m.x / hx) as f32).clamp(-1.0, 1.0);
-                    t[1] = (t[1] + (self.weight * m.y / hy) as f32).clamp(-1.0, 1.0);
+                    for slot in held_in {
+                        let t = &mut tokens[slot * dim..];
+                        t[0] = (t[0] + (self.weight * m.x / hx) as f32).clamp(-1.0, 1.0);
+                        t[1] = (t[1] + (self.weight * m.y / hy) as f32).clamp(-1.0, 1.0);
+                    }
                 }
                 count
             })

@@ -157,17 +157,18 @@ pub fn decode(tokens: &[f32], window_center: DVec2, ceiling: f64, bounds: &Bound
     decode_slots(tokens, window_center, ceiling, bounds, cfg).into_iter().map(|(_, o)| o).collect()
 }
 
-/// Like [`decode`], with each object's slot index.
+/// Like [`decode`], with the slots holding each object: its own first, then those holding copies of
+/// it.
 pub fn decode_slots(
     tokens: &[f32],
     window_center: DVec2,
     ceiling: f64,
     bounds: &Bounds,
     cfg: &ModelConfig,
-) -> Vec<(usize, Object)> {
+) -> Vec<(Vec<usize>, Object)> {
     let dim = cfg.token_dim();
     let categories = cfg.room_type.categories();
-    let mut objects = Vec::new();
+    let mut objects: Vec<(Vec<usize>, Object)> = Vec::new();
     for (slot, t) in tokens.chunks_exact(dim).enumerate() {
         let class = slot_class(t, cfg);
         let Some(&category) = categories.get(class) else { continue };
@@ -183,8 +184,9 @@ pub fn decode_slots(
             size,
             yaw: if yaw.is_finite() { yaw } else { 0.0 },
         };
-        if !objects.iter().any(|(_, kept)| is_copy(&object, kept)) {
-            objects.push((slot, object));
+        match objects.iter_mut().find(|(_, kept)| is_copy(&object, kept)) {
+            Some((slots, _)) => slots.push(slot),
+            None => objects.push((vec![slot], object)),
         }
     }
     objects
@@ -269,7 +271,13 @@ mod tests {
                 let one = decode(&tokens[k * dim..(k + 1) * dim], cond.window.center, 2.6, &bounds, &cfg);
                 assert!((contact_iou(b, &one) - best).abs() < 1e-4, "box {k}");
             }
-            shared += boxes.len() - slots.iter().filter(|(s, _)| *s < boxes.len()).count();
+            shared += boxes.len() - slots.iter().filter(|(s, _)| s[0] < boxes.len()).count();
+            // A shared piece lists every slot that holds it: each box something covers is in a list.
+            for (k, b) in boxes.iter().enumerate() {
+                if scene.objects.iter().any(|o| contact_iou(b, std::slice::from_ref(o)) > 0.0) {
+                    assert!(slots.iter().any(|(s, _)| s.contains(&k)), "box {k}'s slot");
+                }
+            }
         }
         assert!(shared > 0, "some sofa serves two sitters in 40 living rooms");
     }
