@@ -21,6 +21,7 @@ fn rect(w: f64, d: f64) -> FloorPlan {
     FloorPlan { polygon: vec![[0.0, 0.0], [w, 0.0], [w, d], [0.0, d]], height: 2.6 }
 }
 
+/// Yaws are the scene format's: 0° faces +y, 90° faces −x (counter-clockwise from +y).
 fn sitter(id: &str, at: [f64; 2], seat: f64, yaw_deg: f64) -> Human {
     let body = Body::new(1.72);
     let pose = sit(&body, DVec2::from(at), seat, yaw_deg.to_radians());
@@ -59,38 +60,38 @@ fn main() -> anyhow::Result<()> {
             scene(
                 RoomType::Bedroom,
                 rect(2.6, 2.8),
-                vec![sitter("desk", [2.0, 2.25], 0.46, 90.0), walker("door", &[[0.4, 0.3], [0.6, 2.4]])],
+                vec![sitter("desk", [2.0, 2.05], 0.46, 0.0), walker("door", &[[0.4, 0.3], [0.6, 2.4]])],
             ),
         ),
-        // A person seated at a desk against the top wall, a walker passing about 30 cm behind them.
+        // A person seated facing a desk against the top wall, a walker passing about 30 cm behind them.
         (
             "walker_behind_sitter",
             scene(
                 RoomType::Bedroom,
                 rect(3.6, 3.4),
-                vec![sitter("desk", [1.8, 2.75], 0.46, 90.0), walker("behind", &[[0.3, 1.95], [3.3, 1.95]])],
+                vec![sitter("desk", [1.8, 2.75], 0.46, 0.0), walker("behind", &[[0.3, 1.95], [3.3, 1.95]])],
             ),
         ),
-        // A living room crossed diagonally through its middle, with one sitter by a wall.
+        // A living room crossed diagonally through its middle, with one sitter, back to a wall.
         (
             "walker_through_middle",
             scene(
                 RoomType::Living,
                 rect(5.0, 4.2),
-                vec![sitter("reader", [0.55, 2.1], 0.44, 0.0), walker("cross", &[[1.2, 0.3], [4.6, 3.9]])],
+                vec![sitter("reader", [0.55, 2.1], 0.44, -90.0), walker("cross", &[[1.2, 0.3], [4.6, 3.9]])],
             ),
         ),
-        // Three sitters shoulder to shoulder facing a wall (one sofa's worth) and a stander.
+        // Three sitters shoulder to shoulder, their backs to a wall (one sofa's worth), and a stander.
         (
             "three_on_a_sofa",
             scene(
                 RoomType::Living,
                 rect(4.8, 4.0),
                 vec![
-                    sitter("left", [1.75, 0.55], 0.43, 90.0),
-                    sitter("middle", [2.4, 0.55], 0.43, 90.0),
-                    sitter("right", [3.05, 0.55], 0.43, 90.0),
-                    stander("host", [3.9, 2.8], -90.0),
+                    sitter("left", [1.75, 0.55], 0.43, 0.0),
+                    sitter("middle", [2.4, 0.55], 0.43, 0.0),
+                    sitter("right", [3.05, 0.55], 0.43, 0.0),
+                    stander("host", [3.9, 2.8], 180.0),
                 ],
             ),
         ),
@@ -101,9 +102,9 @@ fn main() -> anyhow::Result<()> {
                 RoomType::Dining,
                 rect(4.2, 3.6),
                 vec![
-                    sitter("north", [2.1, 2.35], 0.46, -90.0),
-                    sitter("south", [2.1, 1.25], 0.46, 90.0),
-                    sitter("head", [1.2, 1.8], 0.46, 0.0),
+                    sitter("north", [2.1, 2.35], 0.46, 180.0),
+                    sitter("south", [2.1, 1.25], 0.46, 0.0),
+                    sitter("head", [1.2, 1.8], 0.46, -90.0),
                     walker("serve", &[[3.8, 0.4], [3.8, 3.2]]),
                 ],
             ),
