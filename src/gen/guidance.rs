@@ -23,7 +23,7 @@
 use super::bodies::{BodyBalls, SupportNeed, body_penetration, support_shortfall};
 use super::tokens::{CLASS_OFFSET, decode_slots};
 use super::{Bounds, GenError, Guidance, ModelConfig};
-use crate::geom::{Mask, OBox, RoomWindow, intersection_volume, iou_3d};
+use crate::geom::{Mask, OBox, Polygon, RoomWindow, intersection_volume, iou_3d};
 use crate::human::{Conditions, ContactBox};
 use crate::physics::Physics;
 use crate::scene::{Action, Category, Object, Scene};
@@ -308,6 +308,8 @@ pub struct SceneMasks {
     pub free: Mask,
     /// Outside the floor plan.
     pub outside: Mask,
+    /// The floor plan itself (J_b's pull on pieces wholly outside it).
+    pub floor: Polygon,
     /// The footprints of the contact boxes, in the scene's box order (box k anchors slot k).
     pub contacts: Vec<Footprint>,
     /// The people's bones as balls (J_p).
@@ -342,7 +344,8 @@ impl SceneMasks {
         let c = Conditions::of(scene);
         let contacts = c.contact_boxes.iter().map(|b| Footprint::of(&c.window, b)).collect();
         let bodies = BodyBalls::of(&scene.humans);
-        SceneMasks { window: c.window, free: c.free_space, outside: c.floor.inverted(), contacts, bodies }
+        let floor = scene.floor_plan.polygon();
+        SceneMasks { window: c.window, free: c.free_space, outside: c.floor.inverted(), floor, contacts, bodies }
     }
 }
 
@@ -444,6 +447,30 @@ pub fn pairwise_overlap(objects: &[GuidedObject], overlap: Overlap) -> (f64, Vec
     (total, grads)
 }
 
+/// J_b's second half: Σ over pieces whose centre lies outside the floor plan of that centre's
+/// distance to it (m), with gradients. A piece wholly outside covers as much of the outside mask
+/// wherever it moves, so the soft coverage has no gradient to bring it back (a console table or a
+/// pendant lamp sampled in the missing corner of an L-shaped room stayed there); this pulls its
+/// centre in, and the coverage does the rest.
+pub fn centres_outside(objects: &[GuidedObject], floor: &Polygon) -> (f64, Vec<ObjectGradient>) {
+    let mut total = 0.0;
+    let mut grads = vec![[0.0; 7]; objects.len()];
+    for (o, g) in objects.iter().zip(&mut grads) {
+        let c = o.center.truncate();
+        if floor.contains(c) {
+            continue;
+        }
+        let away = c - floor.nearest_boundary_point(c);
+        let d = away.length();
+        if d > 0.0 {
+            total += d;
+            g[0] = away.x / d;
+            g[1] = away.y / d;
+        }
+    }
+    (total, grads)
+}
+
 /// J_c: Σ over anchored objects of the soft area (m²) of their contact boxes' footprints that
 /// their own footprint leaves uncovered, with gradients. `boxes[i]` are the footprints of the
 /// boxes object i serves (several for a sofa in several sitters' slots; none for a free piece).
@@ -491,6 +518,7 @@ pub fn guidance_cost(
     }
     if cfg.bound > 0.0 {
         add(cfg.bound, soft_coverage(objects, &masks.outside, &masks.window, |_| false));
+        add(cfg.bound, centres_outside(objects, &masks.floor));
     }
     if cfg.object > 0.0 {
         add(cfg.object, pairwise_overlap(objects, cfg.overlap));
@@ -745,6 +773,29 @@ mod tests {
         assert!((Overlap::Iou.of(&big, &small) - 0.032 / 1.632).abs() < 1e-9);
         let apart = OBox::new(DVec3::new(1.5, 0.0, 0.2), DVec3::new(0.4, 0.4, 0.4), 0.0);
         assert_eq!(Overlap::Smaller.of(&big, &apart), 0.0);
+    }
+
+    #[test]
+    fn a_piece_wholly_outside_is_pulled_back_by_its_centre() {
+        let floor = Polygon::rectangle(DVec2::ZERO, DVec2::new(4.0, 3.0));
+        let piece = |x: f64, y: f64| GuidedObject {
+            center: DVec3::new(x, y, 0.4),
+            size: DVec3::new(0.5, 0.5, 0.8),
+            yaw: 0.0,
+            hanging: false,
+            category: Category::Cabinet,
+        };
+        // 0.6 m beyond the wall at x = 4 and 0.5 m below y = 0: the distances, pointing away.
+        let (j, g) = centres_outside(&[piece(4.6, 1.5), piece(2.0, -0.5), piece(2.0, 1.5)], &floor);
+        assert!((j - 1.1).abs() < 1e-12, "{j}");
+        assert_eq!((g[0][0], g[0][1]), (1.0, 0.0));
+        assert_eq!((g[1][0], g[1][1]), (0.0, -1.0));
+        assert_eq!(g[2], [0.0; 7], "a piece whose centre is inside is the coverage's business");
+        // The soft coverage of the outside alone has next to no pull on the wholly outside piece.
+        let window = RoomWindow::around(6.0, &floor);
+        let outside = Mask::of_polygon(&window, &floor).inverted();
+        let (_, cg) = soft_coverage(&[piece(4.6, 1.5)], &outside, &window, |_| false);
+        assert!(cg[0][0].abs() < 0.05 && cg[0][1].abs() < 1e-9, "{:?}", cg[0]);
     }
 
     #[test]
