@@ -869,21 +869,27 @@ mod batch_tests {
     use crate::generator::tokens;
     use crate::scene::RoomType;
 
-    #[test]
-    fn guiding_a_batch_moves_an_object_back_inside_the_room() {
+    /// A bedroom whose only piece stands through the wall at x = min x (its centre 10 cm inside),
+    /// a model config with free slots only, the bounds, masks and world tokens.
+    fn piece_through_the_wall() -> (Scene, ModelConfig, Bounds, SceneMasks, Vec<f32>) {
         let mut scene = generate_room(RoomType::Bedroom, 2, 1, false).scene;
-        // Free slots only: a piece in an anchored slot is held by its person (below).
         let cfg = ModelConfig { anchor_scale: 0.0, ..ModelConfig::tiny(RoomType::Bedroom) };
         let mut stats = SplitStats::default();
         stats.add(&scene);
         let bounds = Bounds::from_stats(&stats);
-        // Push the first object half a metre through the wall at x = min x.
         let (min, _) = scene.floor_plan.polygon().bounds();
         scene.objects.truncate(1);
         scene.objects[0].center[0] = min.x + 0.1;
         scene.objects[0].yaw = 0.0;
         let masks = SceneMasks::of(&scene);
         let (tok, _) = tokens::encode(&scene, masks.window.center, &[], &bounds, &cfg);
+        (scene, cfg, bounds, masks, tok)
+    }
+
+    #[test]
+    fn guiding_a_batch_moves_an_object_back_inside_the_room() {
+        // Free slots only: a piece in an anchored slot is held by its person (below).
+        let (scene, cfg, bounds, masks, tok) = piece_through_the_wall();
         let x0 = Tensor::from_vec(tok.clone(), (1, cfg.slots(), cfg.token_dim()), &candle_core::Device::Cpu).unwrap();
         let mut g = SpatialGuidance::new(GuidanceConfig::all(), &cfg, &bounds, &[&scene]);
         let mut x = x0.clone();
@@ -914,19 +920,9 @@ mod batch_tests {
 
     #[test]
     fn a_piece_held_in_two_slots_is_guided_once_and_its_copy_follows() {
-        let mut scene = generate_room(RoomType::Bedroom, 2, 1, false).scene;
-        let cfg = ModelConfig { anchor_scale: 0.0, ..ModelConfig::tiny(RoomType::Bedroom) };
-        let mut stats = SplitStats::default();
-        stats.add(&scene);
-        let bounds = Bounds::from_stats(&stats);
-        // One piece 40 cm through the wall at x = min x, in slot 0 and again, a centimetre off, in
-        // slot 1 (as a sofa is in each of its sitters' slots).
-        let (min, _) = scene.floor_plan.polygon().bounds();
-        scene.objects.truncate(1);
-        scene.objects[0].center[0] = min.x + 0.1;
-        scene.objects[0].yaw = 0.0;
-        let masks = SceneMasks::of(&scene);
-        let (mut tok, _) = tokens::encode(&scene, masks.window.center, &[], &bounds, &cfg);
+        // The piece through the wall in slot 0 and again, a centimetre off, in slot 1 (as a sofa
+        // is in each of its sitters' slots).
+        let (scene, cfg, bounds, masks, mut tok) = piece_through_the_wall();
         let dim = cfg.token_dim();
         let first: Vec<f32> = tok[..dim].to_vec();
         tok[dim..2 * dim].copy_from_slice(&first);
