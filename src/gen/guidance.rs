@@ -71,6 +71,10 @@ pub struct GuidanceConfig {
     /// slots have such pieces.
     #[serde(default = "GuidanceConfig::default_anchored_mobility")]
     pub anchored_mobility: f64,
+    /// Weight of J_q (ours): pieces turned from the walls' directions, Σ (1 − cos 4Δ) / 4 over
+    /// pieces, Δ their yaw less the longest wall's (0 = off; [`squareness`]).
+    #[serde(default)]
+    pub square: f64,
     /// Weight of the physics-feedback displacements (J_phys; 0 = off).
     #[serde(default)]
     pub phys: f64,
@@ -84,10 +88,12 @@ pub struct GuidanceConfig {
 
 impl GuidanceConfig {
     /// All three spatial terms with the default settings, chosen on the val splits
-    /// (docs/RESULTS.md, "Guidance that converges" and "Bodies and support"): J_b weighted 4, J_o
+    /// (docs/RESULTS.md, "Guidance that converges", "Bodies and support" and "Bones, not surface
+    /// points"): J_b weighted 4, J_o
     /// as the share of the smaller piece, J_c 4 holding the pieces under people (which otherwise
     /// move like any piece), J_p and J_s 1 keeping them out of the bodies and up against them, and
-    /// in each of the last 20 steps up to 64 gradient steps of at most 3 cm.
+    /// J_q 1 turning pieces square to the walls, and in each of the last 20 steps up to 128 gradient
+    /// steps of at most 3 cm.
     pub fn all() -> GuidanceConfig {
         GuidanceConfig {
             motion: 1.0,
@@ -95,13 +101,14 @@ impl GuidanceConfig {
             object: 1.0,
             overlap: Overlap::Smaller,
             max_step: Some(0.03),
-            iterations: 64,
+            iterations: 128,
             contact: 4.0,
             body: 1.0,
             support: 1.0,
             scale: 0.1,
             until_step: 20,
             anchored_mobility: 1.0,
+            square: 1.0,
             phys: 0.0,
             phys_until: 20,
             phys_every: 4,
@@ -123,6 +130,7 @@ impl GuidanceConfig {
             support: 0.0,
             until_step: 100,
             anchored_mobility: 0.0,
+            square: 0.0,
             ..Self::all()
         }
     }
@@ -181,6 +189,7 @@ impl GuidanceConfig {
             ("contact", self.contact),
             ("body", self.body),
             ("support", self.support),
+            ("square", self.square),
             ("scale", self.scale),
             ("phys", self.phys),
         ];
@@ -310,6 +319,8 @@ pub struct SceneMasks {
     pub outside: Mask,
     /// The floor plan itself (J_b's pull on pieces wholly outside it).
     pub floor: Polygon,
+    /// The direction of the room's longest wall (J_q); `None` for a plan without edges.
+    pub wall: Option<f64>,
     /// The footprints of the contact boxes, in the scene's box order (box k anchors slot k).
     pub contacts: Vec<Footprint>,
     /// The people's bones as balls (J_p).
@@ -345,7 +356,8 @@ impl SceneMasks {
         let contacts = c.contact_boxes.iter().map(|b| Footprint::of(&c.window, b)).collect();
         let bodies = BodyBalls::of(&scene.humans);
         let floor = scene.floor_plan.polygon();
-        SceneMasks { window: c.window, free: c.free_space, outside: c.floor.inverted(), floor, contacts, bodies }
+        let wall = floor.longest_edge_direction();
+        SceneMasks { window: c.window, free: c.free_space, outside: c.floor.inverted(), floor, wall, contacts, bodies }
     }
 }
 
@@ -471,6 +483,21 @@ pub fn centres_outside(objects: &[GuidedObject], floor: &Polygon) -> (f64, Vec<O
     (total, grads)
 }
 
+/// J_q (ours): Σ over pieces of (1 − cos 4Δ) / 4, Δ the piece's yaw less `wall`'s direction, with
+/// gradients: 0 for a piece square to the walls, at its worst half-way between quarter turns. Every
+/// piece of the training data stands square to the walls, and repair turns the model's pieces so
+/// (`repair::settle`); turned there during sampling, the other terms see the piece as it will stand.
+pub fn squareness(objects: &[GuidedObject], wall: f64) -> (f64, Vec<ObjectGradient>) {
+    let mut total = 0.0;
+    let mut grads = vec![[0.0; 7]; objects.len()];
+    for (o, g) in objects.iter().zip(&mut grads) {
+        let delta = 4.0 * (o.yaw - wall);
+        total += (1.0 - delta.cos()) * 0.25;
+        g[6] = delta.sin();
+    }
+    (total, grads)
+}
+
 /// J_c: Σ over anchored objects of the soft area (m²) of their contact boxes' footprints that
 /// their own footprint leaves uncovered, with gradients. `boxes[i]` are the footprints of the
 /// boxes object i serves (several for a sofa in several sitters' slots; none for a free piece).
@@ -530,6 +557,9 @@ pub fn guidance_cost(
     }
     if cfg.body > 0.0 {
         add(cfg.body, body_penetration(objects, &masks.bodies));
+    }
+    if let Some(wall) = masks.wall.filter(|_| cfg.square > 0.0) {
+        add(cfg.square, squareness(objects, wall));
     }
     if cfg.support > 0.0 {
         let needs: Vec<Vec<SupportNeed>> = anchors
@@ -773,6 +803,33 @@ mod tests {
         assert!((Overlap::Iou.of(&big, &small) - 0.032 / 1.632).abs() < 1e-9);
         let apart = OBox::new(DVec3::new(1.5, 0.0, 0.2), DVec3::new(0.4, 0.4, 0.4), 0.0);
         assert_eq!(Overlap::Smaller.of(&big, &apart), 0.0);
+    }
+
+    #[test]
+    fn squareness_is_zero_at_quarter_turns_and_its_gradient_matches_finite_differences() {
+        let piece = |yaw: f64| GuidedObject {
+            center: DVec3::new(1.0, 1.0, 0.4),
+            size: DVec3::new(0.5, 0.5, 0.8),
+            yaw,
+            hanging: false,
+            category: Category::Cabinet,
+        };
+        let wall = 0.3;
+        for k in -2..=2 {
+            let (j, g) = squareness(&[piece(wall + k as f64 * std::f64::consts::FRAC_PI_2)], wall);
+            assert!(j < 1e-12 && g[0][6].abs() < 1e-9, "quarter turn {k}: {j}");
+        }
+        // Half-way between quarter turns it is at its worst, ½.
+        assert!((squareness(&[piece(wall + std::f64::consts::FRAC_PI_4)], wall).0 - 0.5).abs() < 1e-12);
+        for yaw in [0.1, 0.5, 1.0, 2.0, -2.5] {
+            let (_, g) = squareness(&[piece(yaw)], wall);
+            let h = 1e-6;
+            let fd = (squareness(&[piece(yaw + h)], wall).0 - squareness(&[piece(yaw - h)], wall).0) / (2.0 * h);
+            assert!((g[0][6] - fd).abs() < 1e-6, "{yaw}: {} vs {fd}", g[0][6]);
+            // Descending turns it towards the nearest quarter turn.
+            let next = yaw - 0.01 * g[0][6];
+            assert!(squareness(&[piece(next)], wall).0 < squareness(&[piece(yaw)], wall).0);
+        }
     }
 
     #[test]

@@ -99,6 +99,12 @@ impl Polygon {
         self.points.iter().all(|&p| d.perp_dot(p - p0).abs() <= 1e-12 * d.length_squared())
     }
 
+    /// The direction (rad) of the longest edge (the room's longest wall); `None` without edges.
+    pub fn longest_edge_direction(&self) -> Option<f64> {
+        let (a, b) = self.edges().max_by(|x, y| (x.1 - x.0).length().total_cmp(&(y.1 - y.0).length()))?;
+        Some((b - a).to_angle())
+    }
+
     /// Whether `p` is inside (even–odd rule; points exactly on an edge may go either way).
     pub fn contains(&self, p: DVec2) -> bool {
         let mut inside = false;
@@ -248,6 +254,15 @@ mod tests {
 
     fn poly(p: &[[f64; 2]]) -> Polygon {
         Polygon::new(p.iter().map(|&q| DVec2::from(q)).collect())
+    }
+
+    #[test]
+    fn longest_edge_direction_of_a_rectangle_and_an_empty_polygon() {
+        // A wall's direction, walked either way: along x for a wide room, along y for a deep one.
+        let wide = poly(&[[0.0, 0.0], [4.0, 0.0], [4.0, 3.0], [0.0, 3.0]]).longest_edge_direction().unwrap();
+        let deep = poly(&[[0.0, 0.0], [2.0, 0.0], [2.0, 5.0], [0.0, 5.0]]).longest_edge_direction().unwrap();
+        assert!(wide.sin().abs() < 1e-12 && deep.cos().abs() < 1e-12, "{wide} {deep}");
+        assert_eq!(Polygon::new(Vec::new()).longest_edge_direction(), None);
     }
 
     #[test]

@@ -131,7 +131,7 @@ fn settle_rounds(scene: &mut Scene, people: &Occupancy, config: &RepairConfig, r
     report.turned += turned.iter().zip(&kept).filter(|(t, k)| **t && !**k).count();
     // The data's pieces all stand square to the walls; so do ours (seats the quarter turn nearest
     // their sitter).
-    if let Some(wall) = longest_wall_direction(&polygon).filter(|_| cfg.square) {
+    if let Some(wall) = polygon.longest_edge_direction().filter(|_| cfg.square) {
         for (o, start) in scene.objects.iter_mut().zip(&start_yaw) {
             o.yaw = square_yaw(o.yaw, wall);
             report.squared += (wrap_angle(o.yaw - start).abs() > 1e-3) as usize;
@@ -233,12 +233,6 @@ fn back_to_walls(scene: &mut Scene, people: &Occupancy, config: &RepairConfig) -
         shift(o, m);
     }
     walled
-}
-
-/// The direction (rad) of the floor plan's longest wall.
-fn longest_wall_direction(polygon: &crate::geom::Polygon) -> Option<f64> {
-    let (a, b) = polygon.edges().max_by(|x, y| (x.1 - x.0).length().total_cmp(&(y.1 - y.0).length()))?;
-    Some((b - a).to_angle())
 }
 
 /// The yaw nearest `yaw` among `wall` plus quarter turns, in (−π, π].
