@@ -5,10 +5,10 @@
 //! tests (`sim::check`), each as a row of balls along its bone no further apart than half its radius
 //! (at most a quarter of the radius shallower than the capsule, where its axis grazes a corner, and
 //! under 6 % where it stays half a radius off the piece), at every frame where the body
-//! has moved 10 cm. J_p = Σ over pieces and bones of the bone's depth inside the piece beyond
-//! [`CLEARANCE`] short of it (a bone's depth is its deepest ball's: the capsule's depth, which is
-//! what the check measures), summed over the sampled frames; a bone resting on a seat's top costs
-//! only when it is inside. Its gradient is a central difference of the exact value over the balls
+//! has moved 10 cm. J_p = Σ over pieces, bones and sampled frames of how far the bone reaches
+//! within [`CLEARANCE`] of the piece (its deepest ball's reach: the capsule's depth, which is what
+//! the check measures, plus the clearance); a bone resting on a seat's top costs only when it is
+//! inside. Its gradient is a central difference of the exact value over the balls
 //! near the piece; the balls are bucketed once per scene on a grid.
 //!
 //! J_s (ours) is its other half, support: for a piece anchored to a sitter's or a sleeper's contact
@@ -125,26 +125,21 @@ fn cell_of(p: DVec2) -> (i32, i32) {
     ((p.x / CELL).floor() as i32, (p.y / CELL).floor() as i32)
 }
 
-/// How far any ball of `balls` reaches within [`CLEARANCE`] of the piece's template (negative:
-/// how far it stays beyond).
+/// How far `ball` reaches within [`CLEARANCE`] of the piece's template parts (negative: how far it
+/// stays beyond).
 fn deepest_part(parts: &[Part], ball: &Ball) -> f64 {
     parts.iter().map(|part| ball_depth(part, ball)).fold(f64::NEG_INFINITY, f64::max)
 }
 
-/// J_p of one piece against `balls`: Σ over bones of how far they reach within [`CLEARANCE`] of
-/// its template, a bone's reach being its deepest ball's at that frame — one term per bone, frame
-/// and piece, so a long bone along a surface counts no more than a short one.
+/// J_p of one piece against `balls` (sorted by bone): Σ over bones of how far they reach within
+/// [`CLEARANCE`] of its template, a bone's reach being its deepest ball's at that frame — one term
+/// per bone, frame and piece, so a long bone along a surface counts no more than a short one.
 fn piece_cost(o: &GuidedObject, balls: &[Ball]) -> f64 {
     let parts = template_of(o.category, &o.obox()).parts;
-    let mut deepest: HashMap<u32, f64> = HashMap::new();
-    for b in balls {
-        let over = deepest_part(&parts, b);
-        if over > 0.0 {
-            let d = deepest.entry(b.bone).or_insert(0.0);
-            *d = d.max(over);
-        }
-    }
-    deepest.values().sum()
+    balls
+        .chunk_by(|a, b| a.bone == b.bone)
+        .map(|bone| bone.iter().map(|b| deepest_part(&parts, b)).fold(0.0, f64::max))
+        .sum()
 }
 
 /// How deep `ball` reaches into `part` plus [`CLEARANCE`] (negative when further apart): its
@@ -184,11 +179,12 @@ pub fn body_penetration(objects: &[GuidedObject], bodies: &BodyBalls) -> (f64, V
         let parts = template_of(o.category, &o.obox()).parts;
         // Only balls within a few millimetres of costing can change the cost as the gradient's
         // central differences move the piece.
-        let balls: Vec<Ball> = bodies
+        let mut balls: Vec<Ball> = bodies
             .within(c - reach, c + reach)
             .into_iter()
             .filter(|b| deepest_part(&parts, b) > -DIFFERENCE_MARGIN)
             .collect();
+        balls.sort_by_key(|b| b.bone);
         let cost = piece_cost(o, &balls);
         if cost <= 0.0 {
             continue;
