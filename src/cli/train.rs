@@ -40,7 +40,7 @@ pub struct TrainArgs {
     /// What the denoiser predicts: eps, x0 or v (default: the preset's, x0 for small and tiny).
     #[arg(long, value_parser = by_config_name::<Prediction>)]
     pub prediction: Option<Prediction>,
-    /// The noise schedule: linear or log_snr (default: the preset's).
+    /// The noise schedule: linear, log_snr or cosine (default: the preset's).
     #[arg(long, value_parser = by_config_name::<NoiseSchedule>)]
     pub schedule: Option<NoiseSchedule>,
     /// How an anchored slot's yaw is given: world or box (relative to its contact box's; default:

@@ -22,7 +22,7 @@
 
 use super::bodies::{BodyBalls, SupportNeed, body_penetration, support_shortfall};
 use super::tokens::{CLASS_OFFSET, decode_slots};
-use super::{Bounds, GenError, Guidance, ModelConfig};
+use super::{Bounds, GenError, Guidance, ModelConfig, Schedule};
 use crate::geom::{Mask, OBox, Polygon, RoomWindow, intersection_volume, iou_3d};
 use crate::human::{Conditions, ContactBox};
 use crate::physics::Physics;
@@ -64,7 +64,10 @@ pub struct GuidanceConfig {
     pub support: f64,
     /// Step size γ (token units per unit of weighted J gradient).
     pub scale: f64,
-    /// Guide only at steps t < `until_step` (steps count down from T − 1 to 0).
+    /// Guide only at steps t < `until_step` (steps count down from T − 1 to 0) of the linear
+    /// schedule; under another schedule, at the steps with less noise than the linear schedule's
+    /// step `until_step` ([`super::Schedule::steps_below`]), so that the guidance starts at the
+    /// same noise level whatever the model's schedule.
     pub until_step: usize,
     /// Share of its step a piece in an anchored slot takes (the piece serving a contact box, whose
     /// person holds it in place; 1 = like any piece, 0 = not moved). Only models with anchored
@@ -581,6 +584,8 @@ pub struct SpatialGuidance {
     ceilings: Vec<f64>,
     /// Per item: how many of its first slots are anchored to contact boxes.
     anchored: Vec<usize>,
+    /// Guide at the model's steps t < this: `cfg.until_step` as a noise level.
+    until: usize,
     /// Weighted J summed over the batch at each guided step (for inspection and tests).
     pub history: Vec<(usize, f64)>,
 }
@@ -589,11 +594,13 @@ impl SpatialGuidance {
     /// Guidance for a batch of `scenes` (in batch order).
     pub fn new(cfg: GuidanceConfig, model: &ModelConfig, bounds: &Bounds, scenes: &[&Scene]) -> SpatialGuidance {
         let masks: Vec<SceneMasks> = scenes.iter().map(|s| SceneMasks::of(s)).collect();
+        let until_step = cfg.until_step;
         SpatialGuidance {
             cfg,
             model: model.clone(),
             bounds: bounds.clone(),
             anchored: masks.iter().map(|m| model.anchored_slots(m.contacts.len())).collect(),
+            until: Schedule::of(model).at_linear_noise(until_step),
             masks,
             ceilings: scenes.iter().map(|s| s.floor_plan.height).collect(),
             history: Vec::new(),
@@ -603,7 +610,7 @@ impl SpatialGuidance {
 
 impl Guidance for SpatialGuidance {
     fn guide(&mut self, x0: &Tensor, t: usize) -> Result<Tensor, GenError> {
-        if t >= self.cfg.until_step || !self.cfg.is_active() {
+        if t >= self.until || !self.cfg.is_active() {
             return Ok(x0.clone());
         }
         let dims = x0.dims().to_vec();

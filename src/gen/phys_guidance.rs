@@ -14,7 +14,7 @@
 //! left to the spatial terms. Batch items are handled in parallel.
 
 use super::tokens::decode_slots;
-use super::{Bounds, GenError, Guidance, ModelConfig};
+use super::{Bounds, GenError, Guidance, ModelConfig, Schedule};
 use crate::geom::{footprint_intersection_area, intersection_volume};
 use crate::human::Conditions;
 use crate::measure::contact_iou;
@@ -79,7 +79,8 @@ pub struct PhysicsGuidance {
 
 impl PhysicsGuidance {
     /// Guidance for `scenes` (batch order) moving objects by `weight` × the displacement at the
-    /// steps t < `until_step` that are multiples of `every`.
+    /// steps t < `until_step` (of the linear schedule, as a noise level: [`Schedule::at_linear_noise`])
+    /// that are multiples of `every`.
     pub fn new(
         model: &ModelConfig,
         bounds: &Bounds,
@@ -95,7 +96,7 @@ impl PhysicsGuidance {
             bounds: bounds.clone(),
             scenes: scenes.iter().map(|s| (*s).clone()).collect(),
             weight,
-            until_step,
+            until_step: Schedule::of(model).at_linear_noise(until_step),
             every: every.max(1),
             history: Vec::new(),
         }

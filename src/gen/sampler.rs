@@ -97,7 +97,7 @@ pub fn sample(
 /// (docs/RESULTS.md, "Empty-slot projection"). The threshold is a noise level, not a step count,
 /// because what decides whether a slot is still open is how much noise is left.
 pub fn empty_projection_steps(schedule: &Schedule) -> usize {
-    schedule.steps_below(&Schedule::linear(schedule.steps()), schedule.steps() * 2 / 5)
+    schedule.at_linear_noise(schedule.steps() * 2 / 5)
 }
 
 /// Sets the continuous attributes of every slot whose largest class is "empty" to 0, as in the

@@ -5,7 +5,7 @@
 //! t from a small least noise to the same end. Everything is computed once, in f64.
 
 use super::ModelConfig;
-use super::config::{LOG_SNR_SIGMA_MIN, NoiseSchedule};
+use super::config::{COSINE_OFFSET, LOG_SNR_SIGMA_MIN, NoiseSchedule};
 
 /// Precomputed schedule of one model.
 #[derive(Debug, Clone, PartialEq)]
@@ -22,7 +22,24 @@ impl Schedule {
         match cfg.schedule {
             NoiseSchedule::Linear => Schedule::linear(cfg.diffusion_steps),
             NoiseSchedule::LogSnr => Schedule::log_snr(cfg.diffusion_steps),
+            NoiseSchedule::Cosine => Schedule::cosine(cfg.diffusion_steps),
         }
+    }
+
+    /// The cosine schedule with `steps` steps: ᾱ_t = f(t + 1) / f(0), β_t = 1 − ᾱ_t / ᾱ_{t−1}
+    /// clipped to 0.999 (the last step, where f reaches 0).
+    pub fn cosine(steps: usize) -> Schedule {
+        let f = |t: f64| ((t / steps as f64 + COSINE_OFFSET) / (1.0 + COSINE_OFFSET) * std::f64::consts::FRAC_PI_2).cos().powi(2);
+        let mut betas = Vec::with_capacity(steps);
+        let mut alpha_bars = Vec::with_capacity(steps);
+        let mut product = 1.0;
+        for t in 0..steps {
+            let beta = (1.0 - f(t as f64 + 1.0) / f(t as f64)).min(0.999);
+            product *= 1.0 - beta;
+            betas.push(beta);
+            alpha_bars.push(product);
+        }
+        Schedule { betas, alpha_bars }
     }
 
     /// log-SNR linear in t, from σ = [`LOG_SNR_SIGMA_MIN`] at step 0 to the linear schedule's last
@@ -64,6 +81,12 @@ impl Schedule {
     pub fn steps_below(&self, other: &Schedule, t: usize) -> usize {
         let level = other.alpha_bars[t.min(other.steps() - 1)];
         self.alpha_bars.iter().filter(|&&ab| ab > level).count()
+    }
+
+    /// How many of this schedule's steps carry less noise than the linear schedule's (of the same
+    /// length) step `t`: where a window set in linear steps (the guidance's last 20) begins here.
+    pub fn at_linear_noise(&self, t: usize) -> usize {
+        self.steps_below(&Schedule::linear(self.steps()), t)
     }
 
     /// Number of steps T.
@@ -116,6 +139,23 @@ mod tests {
             // ᾱ is the product of the (1 − β) so far.
             assert!((s.alpha_bars[t] - s.alpha_bars[t - 1] * (1.0 - s.betas[t])).abs() < 1e-12);
         }
+    }
+
+    #[test]
+    fn cosine_matches_its_closed_form_and_ends_in_noise() {
+        let s = Schedule::cosine(200);
+        let f = |t: f64| ((t / 200.0 + 0.008) / 1.008 * std::f64::consts::FRAC_PI_2).cos().powi(2);
+        // ᾱ_t = f(t + 1) / f(0) wherever no β was clipped; σ at step 0 ≈ 0.016 (hand-computed).
+        for t in [0, 1, 50, 100, 150, 198] {
+            assert!((s.alpha_bars[t] - f(t as f64 + 1.0) / f(0.0)).abs() < 1e-12, "step {t}");
+        }
+        assert!(((1.0 - s.alpha_bars[0]).sqrt() - 0.0157).abs() < 5e-4, "{}", (1.0 - s.alpha_bars[0]).sqrt());
+        assert!(s.betas[199] <= 0.999 && s.alpha_bars[199] < 1e-3);
+        assert!(s.betas.windows(2).all(|w| w[1] >= w[0]), "betas rise");
+        // Between linear and log-SNR at low noise: more steps below the linear step 20's noise.
+        let (linear, log_snr) = (Schedule::linear(200), Schedule::log_snr(200));
+        let n = s.steps_below(&linear, 20);
+        assert!(n > 20 && n < log_snr.steps_below(&linear, 20), "{n}");
     }
 
     #[test]
