@@ -28,14 +28,10 @@ pub enum StepName {
     BedsToSitters,
     /// Sofas whose sleeper lies behind the seat's middle trimmed at the front (`sofas_to_sleepers`).
     SofasToSleepers,
-    /// Tall pieces whose touchers' palms are inside them trimmed at the front (`touched_fronts`).
-    TouchedFronts,
     /// Sofas widened until their seat spans their people (`wide_seats`).
     WideSeats,
     /// Pieces poking out of the floor plan moved or narrowed inside (`fit_into_room`).
     FitIntoRoom,
-    /// Pieces narrowed off the walkers' feet (`narrow_off_paths`).
-    NarrowOffPaths,
     /// Pieces pushed or narrowed out of the bones that enter them (`off_bodies`).
     OffBodies,
     /// Pieces people still pass through left out (`left_out`).
@@ -46,17 +42,15 @@ pub enum StepName {
 
 impl StepName {
     /// Every step, in the order the default pipeline runs them.
-    pub const ALL: [StepName; 13] = [
+    pub const ALL: [StepName; 11] = [
         StepName::Settle,
         StepName::Relocate,
         StepName::BedSwap,
         StepName::DeepSeats,
         StepName::BedsToSitters,
         StepName::SofasToSleepers,
-        StepName::TouchedFronts,
         StepName::WideSeats,
         StepName::FitIntoRoom,
-        StepName::NarrowOffPaths,
         StepName::OffBodies,
         StepName::LeftOut,
         StepName::Overlaps,
@@ -71,10 +65,8 @@ impl StepName {
             StepName::DeepSeats => "deep_seats",
             StepName::BedsToSitters => "beds_to_sitters",
             StepName::SofasToSleepers => "sofas_to_sleepers",
-            StepName::TouchedFronts => "touched_fronts",
             StepName::WideSeats => "wide_seats",
             StepName::FitIntoRoom => "fit_into_room",
-            StepName::NarrowOffPaths => "narrow_off_paths",
             StepName::OffBodies => "off_bodies",
             StepName::LeftOut => "left_out",
             StepName::Overlaps => "overlaps",
@@ -103,8 +95,7 @@ pub struct RepairConfig {
     pub completion: CompletionConfig,
     /// `settle`'s settings.
     pub settle: SettleConfig,
-    /// How far a step may narrow a piece (`fit_into_room`, `narrow_off_paths`, `off_bodies`,
-    /// `overlaps`).
+    /// How far a step may narrow a piece (`fit_into_room`, `off_bodies`, `overlaps`).
     pub narrowing: NarrowingConfig,
     /// Where a piece stands against a wall (`settle`, `relocate`).
     pub walls: WallsConfig,
@@ -522,7 +513,7 @@ mod tests {
     #[test]
     fn an_empty_object_is_the_default_pipeline() {
         assert_eq!(RepairConfig::from_json("{}").unwrap(), RepairConfig::default());
-        assert_eq!(RepairConfig::default().steps.len(), 13);
+        assert_eq!(RepairConfig::default().steps.len(), 11);
     }
 
     #[test]

@@ -8,18 +8,11 @@
 
 use super::completion::SeatGaps;
 use super::config::{HoldingConfig, NarrowingConfig};
-use super::occupancy::Occupancy;
 use crate::furniture::{PartRole, size_range, template};
 use crate::geom::{OBox, Polygon, facing};
 use crate::human::ContactBox;
 use crate::scene::{Action, Group, Object};
 use glam::DVec2;
-
-/// Whether `o`, standing in for object `i`, still has every box `i` holds on the part of it the
-/// box must be on ([`holding_region`]); true for a piece that holds nobody.
-pub fn keeps_its_people(people: &Occupancy, i: usize, o: &Object, rules: &HoldingConfig) -> bool {
-    people.held_by(i).iter().all(|(c, gaps)| containment_shift(c, gaps, o, rules).length() < 1e-3)
-}
 
 pub fn shift(o: &mut Object, m: DVec2) {
     o.center[0] += m.x;

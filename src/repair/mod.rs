@@ -15,10 +15,8 @@
 //! | `deep_seats` | a chair or sofa too deep for its sitters' knees loses depth at the front | – |
 //! | `beds_to_sitters` | a bed under its sitters' lower legs is narrowed on their side | `holding` |
 //! | `sofas_to_sleepers` | a sofa whose sleeper lies behind the seat's middle loses depth at the front | `sofas_to_sleepers` |
-//! | `touched_fronts` | a tall piece whose toucher's palm is inside it loses depth at the front | `holding` |
 //! | `wide_seats` | a sofa whose people overhang its seat grows at that end | `wide_seats`, `gap` |
 //! | `fit_into_room` | a piece poking out of the floor plan is moved back or narrowed | `fit_into_room`, `narrowing`, `holding`, `gap` |
-//! | `narrow_off_paths` | a piece a few centimetres over the walkers' feet is narrowed off them | `narrowing`, `holding` |
 //! | `off_bodies` | a piece holding nobody is pushed or narrowed out of the bones that enter it | `off_bodies`, `narrowing`, `gap` |
 //! | `left_out` | a piece holding nobody that people still pass through is left out | `left_out` |
 //! | `overlaps` | overlaps that survive are narrowed away, or the smaller piece goes | `narrowing`, `gap` |
@@ -36,7 +34,6 @@ mod deep_seats;
 mod fit_into_room;
 mod helpers;
 mod left_out;
-mod narrow_off_paths;
 mod occupancy;
 mod off_bodies;
 mod overlaps;
@@ -46,7 +43,6 @@ mod settle;
 mod sofas_to_sleepers;
 #[cfg(test)]
 pub(crate) mod tests;
-mod touched_fronts;
 mod walls;
 mod wide_seats;
 
@@ -72,10 +68,8 @@ pub fn step(name: StepName) -> Box<dyn RepairStep> {
         StepName::DeepSeats => Box::new(deep_seats::DeepSeats),
         StepName::BedsToSitters => Box::new(beds_to_sitters::BedsToSitters),
         StepName::SofasToSleepers => Box::new(sofas_to_sleepers::SofasToSleepers),
-        StepName::TouchedFronts => Box::new(touched_fronts::TouchedFronts),
         StepName::WideSeats => Box::new(wide_seats::WideSeats),
         StepName::FitIntoRoom => Box::new(fit_into_room::FitIntoRoom),
-        StepName::NarrowOffPaths => Box::new(narrow_off_paths::NarrowOffPaths),
         StepName::OffBodies => Box::new(off_bodies::OffBodies),
         StepName::LeftOut => Box::new(left_out::LeftOut),
         StepName::Overlaps => Box::new(overlaps::Overlaps),

@@ -83,11 +83,6 @@ pub enum StepReport {
         /// Sofas trimmed.
         trimmed: usize,
     },
-    /// `touched_fronts`: tall touched pieces trimmed at the front.
-    TouchedFronts {
-        /// Pieces trimmed.
-        trimmed: usize,
-    },
     /// `wide_seats`: sofas widened.
     WideSeats {
         /// Sofas widened.
@@ -95,11 +90,6 @@ pub enum StepReport {
     },
     /// `fit_into_room`: pieces narrowed to fit the floor plan.
     FitIntoRoom {
-        /// Pieces narrowed.
-        narrowed: usize,
-    },
-    /// `narrow_off_paths`: pieces narrowed off the walkers' feet.
-    NarrowOffPaths {
         /// Pieces narrowed.
         narrowed: usize,
     },
@@ -132,10 +122,8 @@ impl StepReport {
             | StepReport::DeepSeats { trimmed: n }
             | StepReport::BedsToSitters { trimmed: n }
             | StepReport::SofasToSleepers { trimmed: n }
-            | StepReport::TouchedFronts { trimmed: n }
             | StepReport::WideSeats { widened: n }
             | StepReport::FitIntoRoom { narrowed: n }
-            | StepReport::NarrowOffPaths { narrowed: n }
             | StepReport::OffBodies { pushed: n }
             | StepReport::LeftOut { left_out: n } => n,
             StepReport::Overlaps { narrowed, removed } => narrowed + removed,
@@ -200,12 +188,9 @@ impl RepairReport {
                 StepReport::BedSwap { swapped } => t.swapped += swapped,
                 StepReport::DeepSeats { trimmed }
                 | StepReport::BedsToSitters { trimmed }
-                | StepReport::SofasToSleepers { trimmed }
-                | StepReport::TouchedFronts { trimmed } => t.trimmed += trimmed,
+                | StepReport::SofasToSleepers { trimmed } => t.trimmed += trimmed,
                 StepReport::WideSeats { widened } => t.widened += widened,
-                StepReport::FitIntoRoom { narrowed } | StepReport::NarrowOffPaths { narrowed } => {
-                    t.narrowed += narrowed
-                }
+                StepReport::FitIntoRoom { narrowed } => t.narrowed += narrowed,
                 StepReport::OffBodies { pushed } => t.pushed += pushed,
                 StepReport::LeftOut { left_out } => t.left_out += left_out,
                 StepReport::Overlaps { narrowed, removed } => {

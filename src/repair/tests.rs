@@ -1,10 +1,8 @@
 //! End-to-end tests of the default repair pipeline on generated rooms.
 
 use super::completion::SeatGaps;
-use super::config::{HoldingConfig, NarrowingConfig, SettleConfig};
-use super::helpers::{containment_shift, fits_inside, footprint_separations, keeps_its_people, narrow_by, shift};
-use super::narrow_off_paths::narrow_off_paths;
-use super::occupancy::Occupancy;
+use super::config::{HoldingConfig, SettleConfig};
+use super::helpers::{containment_shift, fits_inside, footprint_separations, shift};
 use super::settle::rests_palm_on_top;
 use super::{RepairConfig, RepairTotals, repair_scene};
 use crate::data::generate_room;
@@ -176,60 +174,6 @@ fn a_wardrobe_whose_nearest_wall_is_a_walkway_goes_to_the_wall_behind_it() {
     let r = repair_with_rounds(&mut scene, 30);
     assert_eq!(r.settle.walled, 1, "{r:?}");
     assert_eq!(scene.objects[0], wardrobe([2.0, 3.5 - 0.3 - 0.05, 1.0], std::f64::consts::PI), "{r:?}");
-}
-
-#[test]
-fn a_piece_a_few_centimetres_over_the_walkers_feet_is_narrowed_off_them() {
-    let mut scene = generate_room(RoomType::Living, 3, 2, false).scene;
-    scene.humans.clear();
-    let mut cond = Conditions::of(&scene);
-    // A column of walked pixels at x ≈ 2.0 m.
-    let w = cond.window;
-    let column = (0..crate::geom::RES).find(|&i| w.pixel_center(i, 0).x > 2.0).unwrap();
-    cond.free_space = crate::geom::Mask::new();
-    for j in 0..crate::geom::RES {
-        cond.free_space.set(column, j);
-    }
-    let x = w.pixel_center(column, 0).x;
-    let cabinet = |center_x: f64| Object {
-        id: "o0".into(),
-        category: crate::scene::Category::Cabinet,
-        center: [center_x, w.center.y, 0.4],
-        size: [0.8, 0.4, 0.8],
-        yaw: 0.0,
-    };
-    // Its +x side 4 cm past the column's centres: cut back to half a pixel short of them.
-    scene.objects = vec![cabinet(x + 0.04 - 0.4)];
-    assert_eq!(narrow_off_paths(&mut scene, &cond, &NarrowingConfig::default(), |_, _| true), 1);
-    let o = &scene.objects[0];
-    assert!((o.center[0] + o.size[0] * 0.5 - (x - w.pixel() * 0.5)).abs() < 1e-9, "{o:?}");
-    assert!((o.center[0] - o.size[0] * 0.5 - (x + 0.04 - 0.8)).abs() < 1e-9, "the far side stays");
-    // A toucher's palm on the cabinet's top 20 cm in from its +x end: the same cut keeps it
-    // there (it is repair's rule for a holder), one 15 cm further would not.
-    let mut held = scene.clone();
-    held.objects = vec![cabinet(x + 0.04 - 0.4)];
-    let body = crate::human::Body::default();
-    let mut m = crate::human::Motion::new(body, 30.0);
-    let palm = glam::DVec3::new(x + 0.04 - 0.2, w.center.y + 0.08, 0.8);
-    m.hold(crate::human::touch(&body, palm, std::f64::consts::PI, crate::human::Side::Right), 3, Action::Touch);
-    held.humans = vec![m.into_human("h0")];
-    let mut people = Occupancy::of(&held, &Default::default());
-    people.holders = vec![(0, 0)];
-    let (mut cut, mut cut_more) = (held.objects[0].clone(), held.objects[0].clone());
-    assert!(narrow_by(&mut cut, DVec2::new(-0.04, 0.0), &NarrowingConfig::default()));
-    cut_more.size[0] -= 0.19;
-    cut_more.center[0] -= 0.095;
-    assert!(keeps_its_people(&people, 0, &held.objects[0], &HoldingConfig::default()), "held at first");
-    assert!(
-        keeps_its_people(&people, 0, &cut, &HoldingConfig::default())
-            && !keeps_its_people(&people, 0, &cut_more, &HoldingConfig::default())
-    );
-    // 20 cm over: left alone; a piece whose people the cut would leave: left alone.
-    for (center, keeps) in [(x + 0.2 - 0.4, true), (x + 0.04 - 0.4, false)] {
-        scene.objects = vec![cabinet(center)];
-        assert_eq!(narrow_off_paths(&mut scene, &cond, &NarrowingConfig::default(), |_, _| keeps), 0);
-        assert_eq!(scene.objects[0], cabinet(center));
-    }
 }
 
 #[test]
