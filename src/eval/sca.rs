@@ -25,8 +25,11 @@ pub struct ScaConfig {
     /// Hidden units (default 32).
     pub hidden: usize,
     /// Lengths are seen to this resolution (m, default 0.05): finer differences do not show in a
-    /// render a user looks at, and a classifier must not win on them.
+    /// render a user looks at, and a classifier must not win on them. A turn off square is seen
+    /// as the length its corners move, so to the same resolution.
     pub resolution: f64,
+    /// The share of a piece's volume that others share is seen to this resolution (default 0.05).
+    pub share_resolution: f64,
     /// AdamW steps, each on one batch, in passes over the training half in a fresh order each
     /// (default 500).
     pub steps: usize,
@@ -46,6 +49,7 @@ impl Default for ScaConfig {
     fn default() -> ScaConfig {
         ScaConfig {
             resolution: 0.05,
+            share_resolution: 0.05,
             hidden: 32,
             steps: 500,
             batch: 32,
@@ -83,9 +87,9 @@ const FAR: f64 = 3.0;
 
 /// A layout's features, in this order: per furniture group, how many pieces it has and the mean,
 /// least and greatest of each [`piece_descriptors`] value over them (zeros for none; lengths to
-/// `resolution`); the count of each of the room type's categories; the floor area and the number
-/// of pieces.
-pub fn layout_features(scene: &Scene, resolution: f64) -> Vec<f32> {
+/// `resolution`, shares to `share_resolution`); the count of each of the room type's categories;
+/// the floor area and the number of pieces.
+pub fn layout_features(scene: &Scene, resolution: f64, share_resolution: f64) -> Vec<f32> {
     let polygon = scene.floor_plan.polygon();
     let boxes: Vec<OBox> = scene.objects.iter().map(|o| o.obox()).collect();
     let wall = polygon
@@ -96,7 +100,7 @@ pub fn layout_features(scene: &Scene, resolution: f64) -> Vec<f32> {
         .objects
         .iter()
         .enumerate()
-        .map(|(i, o)| (o.category.group(), piece_descriptors(i, &boxes, &polygon, wall, resolution)))
+        .map(|(i, o)| (o.category.group(), piece_descriptors(i, &boxes, &polygon, wall, resolution, share_resolution)))
         .collect();
     let mut out = Vec::new();
     for g in GROUPS {
@@ -120,11 +124,21 @@ pub fn layout_features(scene: &Scene, resolution: f64) -> Vec<f32> {
 
 /// What a layout shows of piece `i` (its box among `boxes`) in a floor plan whose longest wall
 /// runs at `wall` (rad): width, depth, height; its footprint's distance from the walls and its
-/// back edge's (m, negative when outside); how far it is turned off square to the walls
-/// (|sin 2Δ|); the gap to the nearest other piece's footprint (m, negative when they overlap,
-/// [`FAR`] at most); the volume it shares with others over its own; its distance from the floor's
-/// centre over the room's scale.
-fn piece_descriptors(i: usize, boxes: &[OBox], polygon: &Polygon, wall: f64, resolution: f64) -> [f64; DESCRIPTORS] {
+/// back edge's (m, negative when outside); how far it is turned off square to the walls, as the
+/// distance its footprint's corners move from where they would stand square (2 sin(|Δ| / 2) ×
+/// half its diagonal, Δ within ±45°: a turn is seen as far as it shows, not as an angle a render
+/// cannot show: every real piece turned 0.5° scored 0.998 when the angle itself was a feature);
+/// the gap to the nearest other piece's footprint (m, negative when they overlap, [`FAR`] at
+/// most); the volume it shares with others over its own; its distance from the floor's centre
+/// over the room's scale.
+fn piece_descriptors(
+    i: usize,
+    boxes: &[OBox],
+    polygon: &Polygon,
+    wall: f64,
+    resolution: f64,
+    share_resolution: f64,
+) -> [f64; DESCRIPTORS] {
     let b = &boxes[i];
     let corners = b.footprint();
     let wall_gap = corners.iter().map(|&p| -polygon.signed_distance(p)).fold(f64::INFINITY, f64::min);
@@ -143,16 +157,21 @@ fn piece_descriptors(i: usize, boxes: &[OBox], polygon: &Polygon, wall: f64, res
     let (min, max) = polygon.bounds();
     let centre = (min + max) * 0.5;
     let scale = polygon.area().max(1e-6).sqrt();
-    let seen = |v: f64| if resolution > 0.0 { (v / resolution).round() * resolution } else { v };
+    let to = |v: f64, step: f64| if step > 0.0 { (v / step).round() * step } else { v };
+    let seen = |v: f64| to(v, resolution);
+    let quarter = std::f64::consts::FRAC_PI_2;
+    let off_square = (b.yaw - wall).rem_euclid(quarter);
+    let off_square = off_square.min(quarter - off_square);
+    let turned = 2.0 * (off_square * 0.5).sin() * b.size.truncate().length() * 0.5;
     [
         seen(b.size.x),
         seen(b.size.y),
         seen(b.size.z),
         seen(wall_gap),
         seen(back),
-        (2.0 * (b.yaw - wall)).sin().abs(),
+        seen(turned),
         seen(nearest),
-        shared / b.volume().max(1e-9),
+        to(shared / b.volume().max(1e-9), share_resolution),
         seen(b.center.truncate().distance(centre)) / scale,
     ]
 }
@@ -164,8 +183,9 @@ pub fn sca(generated: &[Scene], reference: &[Scene], cfg: &ScaConfig) -> Option<
     if n < SCA_MIN_LAYOUTS || cfg.repeats == 0 {
         return None;
     }
-    let features =
-        |set: &[Scene]| -> Vec<Vec<f32>> { set.iter().map(|s| layout_features(s, cfg.resolution)).collect() };
+    let features = |set: &[Scene]| -> Vec<Vec<f32>> {
+        set.iter().map(|s| layout_features(s, cfg.resolution, cfg.share_resolution)).collect()
+    };
     let (fake, real) = (features(generated), features(reference));
     let half = n / 2;
     let mut repeats = Vec::with_capacity(cfg.repeats);
@@ -363,7 +383,7 @@ mod tests {
         let mut table = Object::standing("o0", Category::DiningTable, [1.6, 2.5], [1.2, 0.8, 0.75]);
         table.yaw = 0.3;
         scene.objects = vec![table.clone()];
-        let f = layout_features(&scene, 0.0);
+        let f = layout_features(&scene, 0.0, 0.0);
         let stride = 1 + 3 * DESCRIPTORS;
         assert_eq!(f.len(), GROUPS.len() * stride + RoomType::Living.categories().len() + 2);
         let g = GROUPS.iter().position(|g| *g == Group::Table).unwrap();
@@ -375,7 +395,9 @@ mod tests {
         // Its footprint's corner nearest the west wall: 1.6 − (0.6 cos 0.3 + 0.4 sin 0.3) by hand.
         let wall_gap = 1.6 - (0.6 * 0.3f64.cos() + 0.4 * 0.3f64.sin());
         assert!((f64::from(at(3, 0)) - wall_gap).abs() < 1e-5, "{}", at(3, 0));
-        assert!((f64::from(at(5, 0)) - 0.6f64.sin()).abs() < 1e-6, "off square by |sin 0.6|");
+        // Turned 0.3 rad: its corners, half of √(1.2² + 0.8²) out, move 2 sin(0.15) × 0.7211 m.
+        let turned = 2.0 * 0.15f64.sin() * (0.36f64 + 0.16).sqrt();
+        assert!((f64::from(at(5, 0)) - turned).abs() < 1e-6, "{} vs {turned}", at(5, 0));
         assert_eq!((at(6, 0), at(7, 0)), (FAR as f32, 0.0), "alone: no neighbour, nothing shared");
         // A second table overlapping it by 0.6 × 0.6 m: a corner of each 0.2 m deep in the other
         // (the gap is −0.2 m) and 0.36 of their 0.96 m² footprints shared.
@@ -384,12 +406,13 @@ mod tests {
         other.center[0] += 0.6;
         other.center[1] += 0.2;
         scene.objects = vec![table, other];
-        let f = layout_features(&scene, 0.0);
+        let f = layout_features(&scene, 0.0, 0.0);
         let at = |k: usize, which: usize| f[g * stride + 1 + 3 * k + which];
         assert!((at(6, 0) + 0.2).abs() < 1e-5 && (at(7, 0) - 0.375).abs() < 1e-5, "{} {}", at(6, 0), at(7, 0));
         // Lengths are seen to the resolution.
-        let coarse = layout_features(&scene, 0.25);
+        let coarse = layout_features(&scene, 0.25, 0.1);
         assert_eq!(coarse[g * stride + 1], 1.25);
+        assert!((coarse[g * stride + 1 + 3 * 7] - 0.4).abs() < 1e-6, "0.375 of its volume shared, seen to 0.1");
     }
 
     #[test]
@@ -401,6 +424,22 @@ mod tests {
         // Two draws of the same generator are as hard to tell apart.
         let r = sca(&living_rooms(4, 60), &rooms, &ScaConfig::default()).unwrap();
         assert!((r.accuracy - 0.5).abs() <= 0.15, "{r:?}");
+    }
+
+    #[test]
+    fn pieces_turned_further_than_a_render_shows_give_themselves_away_and_slighter_turns_do_not() {
+        let rooms = living_rooms(3, 80);
+        let turned = |degrees: f64| -> Vec<Scene> {
+            let mut out = rooms.clone();
+            for (k, o) in out.iter_mut().flat_map(|s| s.objects.iter_mut()).enumerate() {
+                o.yaw += degrees.to_radians() * if k % 2 == 0 { 1.0 } else { -1.0 };
+            }
+            out
+        };
+        let slight = sca(&turned(0.5), &rooms, &ScaConfig::default()).unwrap();
+        assert!((slight.accuracy - 0.5).abs() <= 0.15, "0.5°: {slight:?}");
+        let visible = sca(&turned(12.0), &rooms, &ScaConfig::default()).unwrap();
+        assert!(visible.accuracy >= 0.8, "12°: {visible:?}");
     }
 
     #[test]

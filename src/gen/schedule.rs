@@ -29,7 +29,9 @@ impl Schedule {
     /// The cosine schedule with `steps` steps: ᾱ_t = f(t + 1) / f(0), β_t = 1 − ᾱ_t / ᾱ_{t−1}
     /// clipped to 0.999 (the last step, where f reaches 0).
     pub fn cosine(steps: usize) -> Schedule {
-        let f = |t: f64| ((t / steps as f64 + COSINE_OFFSET) / (1.0 + COSINE_OFFSET) * std::f64::consts::FRAC_PI_2).cos().powi(2);
+        let f = |t: f64| {
+            ((t / steps as f64 + COSINE_OFFSET) / (1.0 + COSINE_OFFSET) * std::f64::consts::FRAC_PI_2).cos().powi(2)
+        };
         let mut betas = Vec::with_capacity(steps);
         let mut alpha_bars = Vec::with_capacity(steps);
         let mut product = 1.0;

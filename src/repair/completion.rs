@@ -245,19 +245,36 @@ pub(super) fn height_for_surface(category: Category, size: [f64; 3], target: f64
 }
 
 /// The height within `lo..=hi` at which the category's sitting or lying surface comes nearest
-/// `target`: [`height_for_surface`] clamped, or `target` itself clamped — a bed no taller than
-/// 0.7 m has no headboard and its mattress is its top, so a low bed can seat a person higher than
-/// a tall one of the same category — whichever comes nearer (the first on a tie).
+/// `target`. The surface is not one smooth function of the height: a bed no taller than 0.7 m has
+/// no headboard and its mattress is its top, a taller one's mattress is at half its height, so a
+/// low bed can seat a person higher than a tall one and a tall one lower than a low one. Candidates,
+/// in order, each taken only where it comes strictly nearer than those before: [`height_for_surface`]
+/// from the piece's own height, `target` itself, and [`height_for_surface`] from every
+/// [`HEIGHT_START_STEP`] across the range (which reaches the other branch: a 0.5 m bed under a
+/// sleeper whose mattress must be at 0.355 m becomes a 0.71 m one, not the lowest real one with
+/// its mattress 2.3 cm into the sleeper's back).
 pub(super) fn height_within(category: Category, size: [f64; 3], target: f64, (lo, hi): (f64, f64)) -> f64 {
     let miss = |h: f64| {
         template_of(category, &boxed([size[0], size[1], h]))
             .surface
             .map_or(f64::INFINITY, |s| (s.height - target).abs())
     };
-    let scaled = height_for_surface(category, size, target).clamp(lo, hi);
-    let direct = target.clamp(lo, hi);
-    if miss(direct) < miss(scaled) - 1e-9 { direct } else { scaled }
+    let scaled_from = |start: f64| height_for_surface(category, [size[0], size[1], start], target).clamp(lo, hi);
+    let starts = ((hi - lo) / HEIGHT_START_STEP).ceil().max(0.0) as usize;
+    let across = (0..=starts).map(|k| scaled_from(lo + (hi - lo) * k as f64 / starts.max(1) as f64));
+    let candidates = [scaled_from(size[2]), target.clamp(lo, hi)].into_iter().chain(across);
+    let mut best = (f64::INFINITY, size[2]);
+    for h in candidates {
+        let m = miss(h);
+        if m < best.0 - 1e-9 {
+            best = (m, h);
+        }
+    }
+    best.1
 }
+
+/// Spacing of the heights [`height_within`] also scales from (m).
+const HEIGHT_START_STEP: f64 = 0.1;
 
 /// A box of `size` standing at the origin, unturned.
 fn boxed(size: [f64; 3]) -> OBox {
@@ -317,6 +334,20 @@ mod tests {
         let (lo, hi) = (0.6, 1.2);
         let h = height_within(Category::DiningChair, chair, 0.47, (lo, hi));
         assert_eq!(h, height_for_surface(Category::DiningChair, chair, 0.47).clamp(lo, hi));
+    }
+
+    #[test]
+    fn a_low_bed_under_a_low_mattress_becomes_a_tall_one_with_its_mattress_at_half_height() {
+        // Real double beds are 0.528–1.16 m tall: 0.378–1.31 m within 15 cm. A sleeper whose
+        // support must end at 0.355 m on a 0.5 m bed (no headboard, the mattress its top): the
+        // lowest such bed (0.378 m) leaves the mattress 2.3 cm into them; a 0.71 m bed's
+        // mattress is at half its height, exactly 0.355 m.
+        let range = (0.528 - 0.15, 1.16 + 0.15);
+        let h = height_within(Category::DoubleBed, [1.6, 2.1, 0.5], 0.355, range);
+        assert!((h - 0.71).abs() < 1e-6, "{h}");
+        // Within reach of the low branch it stays low: a mattress at 0.45 m on a 0.5 m bed.
+        let h = height_within(Category::DoubleBed, [1.6, 2.1, 0.5], 0.45, range);
+        assert!((h - 0.45).abs() < 1e-6, "{h}");
     }
 
     #[test]
