@@ -12,7 +12,8 @@
 //! Realism beyond SHADE's table, against the same reference scenes: each category's per-room count
 //! distribution (`count KL`, the mean over categories of KL(reference ‖ row), and `unseen`, the
 //! share of the row's rooms with a count no reference room has; `counts` in JSON, with the
-//! offending category counts) and SCA (`eval::sca`: the held-out accuracy of a small classifier
+//! offending category counts), `unreal`, the share of rooms with a piece further than 15 cm outside
+//! its category's real sizes (`sizes` in JSON, by category and axis), and SCA (`eval::sca`: the held-out accuracy of a small classifier
 //! trained to tell the row's layouts from the reference's; 0.5 is indistinguishable). `--no-sca`
 //! skips SCA.
 
@@ -23,7 +24,7 @@ use clap::Args;
 use rayon::prelude::*;
 use shade_sim::eval::{
     CklFloor, CountDistribution, EvalRow, PhysicsRates, ScaConfig, category_frequencies, ckl_floor, contact_floor,
-    count_report, evaluate, sca,
+    count_report, evaluate, sca, size_report,
 };
 use shade_sim::scene::{Action, RoomType, Scene};
 use shade_sim::sim::{CheckConfig, ViolationKind, check_scene};
@@ -125,6 +126,7 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
             row.physics = Some(physics(&scenes));
         }
         row.counts = Some(count_report(&scenes, &counts));
+        row.sizes = Some(size_report(&scenes));
         if !args.no_sca {
             row.sca = sca(&scenes, &reference, &ScaConfig::default());
         }
@@ -198,7 +200,7 @@ fn ckl_floors(
 fn table(rows: &[EvalRow]) -> String {
     let ratio = rows.iter().any(|r| r.layout_ratio.is_some());
     let mut t = String::from(
-        "method               scenes  contact IoU↑  Col_mot↓  R_out↓  Col_obj↓  CKL↓    count KL↓  unseen↓  SCA→0.5  E_pen↓  pen. scenes↓  unsupported↓  unstable↓  violating↓",
+        "method               scenes  contact IoU↑  Col_mot↓  R_out↓  Col_obj↓  CKL↓    count KL↓  unseen↓  unreal↓  SCA→0.5  E_pen↓  pen. scenes↓  unsupported↓  unstable↓  violating↓",
     );
     t.push_str(if ratio { "  layout÷base↓\n" } else { "\n" });
     for r in rows {
@@ -217,8 +219,9 @@ fn table(rows: &[EvalRow]) -> String {
             .as_ref()
             .map_or(("-".into(), "-".into()), |c| (format!("{:.3}", c.count_kl), format!("{:.3}", c.unseen_rooms)));
         let sca = r.sca.as_ref().map_or("-".into(), |s| format!("{:.3}", s.accuracy));
+        let unreal = r.sizes.as_ref().map_or("-".into(), |s| format!("{:.3}", s.unreal_rooms));
         t.push_str(&format!(
-            "{:<20} {:>6}  {:>12.3}  {:>8.3}  {:>6.3}  {:>8.3}  {:>6.3}  {count_kl:>9}  {unseen:>7}  {sca:>7}  {:>6.2}{p}{q}\n",
+            "{:<20} {:>6}  {:>12.3}  {:>8.3}  {:>6.3}  {:>8.3}  {:>6.3}  {count_kl:>9}  {unseen:>7}  {unreal:>7}  {sca:>7}  {:>6.2}{p}{q}\n",
             r.name, r.scenes, r.contact_iou, r.col_mot, r.r_out, r.col_obj, r.ckl, r.e_pen
         ));
     }

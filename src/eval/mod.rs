@@ -1,12 +1,13 @@
 //! Metrics: contact IoU, interpenetration (E_pen), the layout metrics of SHADE's Table 1 (Col_mot,
 //! R_out, Col_obj, CKL, and the CKL that real layouts score), realism beyond them (per-room category
-//! counts, `counts`; the SCA two-sample test, `sca`) and, in `table`, the evaluation of generated
+//! counts, `counts`; pieces of sizes no real piece has, `sizes`; the SCA two-sample test, `sca`) and, in `table`, the evaluation of generated
 //! scene sets with the physics rates.
 
 mod ckl_floor;
 mod counts;
 mod layout_metrics;
 mod sca;
+mod sizes;
 mod table;
 
 pub use crate::measure::{FurnitureField, SURFACE_POINTS, human_penetration, scene_penetration};
@@ -15,4 +16,5 @@ pub use ckl_floor::{CklFloor, ckl_floor, contact_floor, contact_pieces};
 pub use counts::{CountDistribution, CountReport, UnseenCount, count_report};
 pub use layout_metrics::{LayoutCounts, category_frequencies, category_kl, frequencies_of};
 pub use sca::{SCA_MIN_LAYOUTS, Sca, ScaConfig, layout_features, sca};
+pub use sizes::{SizeReport, UnrealSize, beyond_real, size_report};
 pub use table::{EvalRow, PhysicsRates, evaluate};

@@ -2,7 +2,7 @@
 //! category frequencies. Physics rates come from `sim` and are filled in by the caller.
 
 use super::{
-    CklFloor, CountReport, FurnitureField, LayoutCounts, Sca, category_frequencies, category_kl, contact_iou,
+    CklFloor, CountReport, FurnitureField, SizeReport, LayoutCounts, Sca, category_frequencies, category_kl, contact_iou,
     human_penetration,
 };
 use crate::human::contact_boxes;
@@ -60,6 +60,9 @@ pub struct EvalRow {
     /// Per-room category counts against the reference's (`eval::count_report`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub counts: Option<CountReport>,
+    /// Rooms with a piece of a size no real piece of its category has (`eval::size_report`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sizes: Option<SizeReport>,
     /// The SCA two-sample test against the reference's layouts (`eval::sca`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sca: Option<Sca>,
@@ -108,6 +111,7 @@ pub fn evaluate(name: &str, scenes: &[Scene], room: RoomType, reference: &[f64])
         ckl_floor: None,
         ckl_contact_floor: None,
         counts: None,
+        sizes: None,
         sca: None,
     }
 }
@@ -131,6 +135,7 @@ mod tests {
             ckl_floor: None,
             ckl_contact_floor: None,
             counts: None,
+            sizes: None,
             sca: None,
         }
     }

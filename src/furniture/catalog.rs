@@ -82,6 +82,11 @@ pub fn height_range(category: Category) -> (f64, f64) {
     size_range(category, 2)
 }
 
+/// How far (m) a piece may lie outside its category's real range ([`size_range`]) and still count
+/// as one of them: the guidance keeps pieces within it (`GuidanceConfig::real_sizes`) and `eval`
+/// counts the rooms with a piece beyond it (repair's `settle.max_grow_height` is as much).
+pub const REAL_SIZE_MARGIN: f64 = 0.15;
+
 /// The smallest and largest width (`axis` 0), depth (1) or height (2) of `category`'s real pieces
 /// (m); (0, ∞) for a category without any.
 pub fn size_range(category: Category, axis: usize) -> (f64, f64) {

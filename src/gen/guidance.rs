@@ -87,6 +87,13 @@ pub struct GuidanceConfig {
     /// …that are multiples of `phys_every`.
     #[serde(default)]
     pub phys_every: usize,
+    /// How far (m) a guided piece's width, depth and height may leave the range of its category's
+    /// real pieces (`furniture::size_range`); `None` = anywhere within the decoding bounds. The
+    /// terms have no notion of what a piece is: J_p, asked to get a dining table out of its
+    /// diners' thighs, lowered it to the floor (5 cm dining tables, 0.05–0.35 m double beds in
+    /// 36 of 492 guided val bedrooms); kept within what real pieces are, it must move instead.
+    #[serde(default)]
+    pub real_sizes: Option<f64>,
 }
 
 impl GuidanceConfig {
@@ -115,6 +122,7 @@ impl GuidanceConfig {
             phys: 0.0,
             phys_until: 20,
             phys_every: 4,
+            real_sizes: Some(crate::furniture::REAL_SIZE_MARGIN),
         }
     }
 
@@ -134,6 +142,7 @@ impl GuidanceConfig {
             until_step: 100,
             anchored_mobility: 0.0,
             square: 0.0,
+            real_sizes: None,
             ..Self::all()
         }
     }
@@ -182,8 +191,8 @@ impl GuidanceConfig {
     pub const MAX_ITERATIONS: usize = 1000;
 
     /// Why the configuration cannot guide, if it cannot: a weight, γ or `phys` that is negative or
-    /// not finite, `anchored_mobility` outside 0..1, `max_step` not a positive distance, or
-    /// `iterations` above [`MAX_ITERATIONS`](Self::MAX_ITERATIONS).
+    /// not finite, `anchored_mobility` outside 0..1, `max_step` not a positive distance,
+    /// `real_sizes` not a distance ≥ 0, or `iterations` above [`MAX_ITERATIONS`](Self::MAX_ITERATIONS).
     pub fn problem(&self) -> Option<String> {
         let weights = [
             ("motion", self.motion),
@@ -204,6 +213,9 @@ impl GuidanceConfig {
         }
         if let Some(step) = self.max_step.filter(|s| !(s.is_finite() && *s > 0.0)) {
             return Some(format!("max_step: must be a positive distance in metres, not {step}"));
+        }
+        if let Some(margin) = self.real_sizes.filter(|m| !(m.is_finite() && *m >= 0.0)) {
+            return Some(format!("real_sizes: must be a distance ≥ 0 in metres, not {margin}"));
         }
         if self.iterations > Self::MAX_ITERATIONS {
             return Some(format!("iterations: at most {}, not {}", Self::MAX_ITERATIONS, self.iterations));
@@ -655,7 +667,7 @@ fn guide_item(
     let anchors: Vec<Vec<usize>> =
         decoded.iter().map(|(slots, _)| slots.iter().copied().filter(|&s| s < anchored).collect()).collect();
     let (j, grads) = guidance_cost(&objects, &anchors, masks, cfg);
-    for ((held_in, _), g) in decoded.iter().zip(&grads) {
+    for ((held_in, piece), g) in decoded.iter().zip(&grads) {
         let slot = held_in[0];
         let t = &mut tokens[slot * dim..(slot + 1) * dim];
         let step = token_gradient(t, g, bounds);
@@ -673,6 +685,9 @@ fn guide_item(
         for (x, s) in t.iter_mut().zip(step) {
             *x = (*x - (scale * s) as f32).clamp(-1.0, 1.0);
         }
+        if let Some(margin) = cfg.real_sizes {
+            keep_real_size(t, piece.category, margin, bounds);
+        }
         // The slots holding copies of the piece (a sofa in each of its sitters' slots) take its new
         // place and size: one piece, guided once, as the training data has it in every slot.
         let guided: [f32; CLASS_OFFSET] = t[..CLASS_OFFSET].try_into().expect("a token has a centre, size and yaw");
@@ -681,6 +696,20 @@ fn guide_item(
         }
     }
     j
+}
+
+/// Keeps a token's size (entries 3..6) within `margin` (m) of its category's real pieces' range on
+/// each axis, as far as the decoding bounds allow.
+fn keep_real_size(t: &mut [f32], category: Category, margin: f64, bounds: &Bounds) {
+    let size = bounds.unscale_size(std::array::from_fn(|k| f64::from(t[3 + k])));
+    let kept: [f64; 3] = std::array::from_fn(|k| {
+        let (lo, hi) = crate::furniture::size_range(category, k);
+        size[k].clamp((lo - margin).max(0.0), hi + margin)
+    });
+    let scaled = bounds.scale_size(kept);
+    for k in (0..3).filter(|&k| kept[k] != size[k]) {
+        t[3 + k] = (scaled[k] as f32).clamp(-1.0, 1.0);
+    }
 }
 
 /// ∂J/∂token (first 8 entries: centre, size, cos, sin) from ∂J/∂(world parameters).
@@ -708,6 +737,28 @@ mod tests {
     use super::*;
     use crate::geom::Polygon;
     use crate::scene::RoomType;
+
+    #[test]
+    fn guided_sizes_stay_within_their_category_s_real_pieces() {
+        // Decoding bounds from 5 cm to 3 m on every axis; real dining tables are 0.7–0.8 m tall.
+        let bounds =
+            Bounds { center_min: [-3.0; 3], center_max: [3.0; 3], size_min: [0.05; 3], size_max: [3.0; 3] };
+        let (lo, hi) = crate::furniture::size_range(Category::DiningTable, 2);
+        let mut t = vec![0.0f32; 8];
+        let flat = bounds.scale_size([1.6, 0.9, 0.05]);
+        for k in 0..3 {
+            t[3 + k] = flat[k] as f32;
+        }
+        keep_real_size(&mut t, Category::DiningTable, 0.15, &bounds);
+        let size = bounds.unscale_size(std::array::from_fn(|k| f64::from(t[3 + k])));
+        assert!((size[2] - (lo - 0.15)).abs() < 1e-5 && lo > 0.5, "a 5 cm table comes up to {} ({lo}–{hi})", size[2]);
+        // A real one is left exactly as it was.
+        let real = bounds.scale_size([1.6, 0.9, (lo + hi) * 0.5]);
+        let mut t: Vec<f32> = (0..8).map(|k| if (3..6).contains(&k) { real[k - 3] as f32 } else { 0.0 }).collect();
+        let before = t.clone();
+        keep_real_size(&mut t, Category::DiningTable, 0.15, &bounds);
+        assert_eq!(t, before);
+    }
 
     fn window() -> RoomWindow {
         RoomWindow { center: DVec2::new(2.0, 2.0), side: RoomType::Bedroom.window_side() }
@@ -919,6 +970,7 @@ mod tests {
         assert!(bad(GuidanceConfig { bound: -1.0, ..GuidanceConfig::all() }).starts_with("bound:"));
         assert!(bad(GuidanceConfig { scale: f64::NAN, ..GuidanceConfig::all() }).starts_with("scale:"));
         assert!(bad(GuidanceConfig { max_step: Some(-0.03), ..GuidanceConfig::all() }).starts_with("max_step:"));
+        assert!(bad(GuidanceConfig { real_sizes: Some(f64::NAN), ..GuidanceConfig::all() }).starts_with("real_sizes:"));
         assert!(bad(GuidanceConfig { iterations: 1_000_000_000, ..GuidanceConfig::all() }).starts_with("iterations:"));
         assert!(
             bad(GuidanceConfig { anchored_mobility: 2.0, ..GuidanceConfig::all() }).starts_with("anchored_mobility:")
