@@ -2,8 +2,8 @@
 //! category frequencies. Physics rates come from `sim` and are filled in by the caller.
 
 use super::{
-    CklFloor, CountReport, FurnitureField, SizeReport, LayoutCounts, Sca, category_frequencies, category_kl, contact_iou,
-    human_penetration,
+    CklFloor, CountReport, FurnitureField, LayoutCounts, Sca, SizeReport, category_frequencies, category_kl,
+    contact_iou, human_penetration,
 };
 use crate::human::contact_boxes;
 use crate::scene::{RoomType, Scene};

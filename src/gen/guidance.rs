@@ -741,8 +741,7 @@ mod tests {
     #[test]
     fn guided_sizes_stay_within_their_category_s_real_pieces() {
         // Decoding bounds from 5 cm to 3 m on every axis; real dining tables are 0.7–0.8 m tall.
-        let bounds =
-            Bounds { center_min: [-3.0; 3], center_max: [3.0; 3], size_min: [0.05; 3], size_max: [3.0; 3] };
+        let bounds = Bounds { center_min: [-3.0; 3], center_max: [3.0; 3], size_min: [0.05; 3], size_max: [3.0; 3] };
         let (lo, hi) = crate::furniture::size_range(Category::DiningTable, 2);
         let mut t = vec![0.0f32; 8];
         let flat = bounds.scale_size([1.6, 0.9, 0.05]);
