@@ -22,6 +22,10 @@ pub struct TrainArgs {
     /// Calibrated dataset (stats.json, train/, val/).
     #[arg(long)]
     pub data: PathBuf,
+    /// Another calibrated dataset of the same room type whose every split joins the training set
+    /// (--data's val split stays the validation set); repeatable.
+    #[arg(long)]
+    pub extra_data: Vec<PathBuf>,
     /// Model folder to write (config.json, model.safetensors, log.jsonl, loss.png, train state).
     #[arg(long)]
     pub out: PathBuf,
@@ -134,6 +138,7 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
         "--batch, --log-every and --val-every must be positive"
     );
     let mut opts = TrainOptions::new(args.data.clone(), args.out.clone(), model);
+    opts.extra_data = args.extra_data.clone();
     opts.steps = args.steps;
     opts.batch = args.batch;
     opts.lr = args.lr;

@@ -29,6 +29,11 @@ use std::time::{Duration, Instant};
 pub struct TrainOptions {
     /// Calibrated dataset folder (with stats.json, train/ and val/).
     pub data: PathBuf,
+    /// More datasets of the same room type whose every split (train, val, test) joins the
+    /// training set, after `data`'s train split, each split in file-name order: more rooms to
+    /// learn from while `data`'s val and test splits stay the ones every model is measured on.
+    /// Their pieces are encoded within `data`'s bounds; their stats.json joins the data hash.
+    pub extra_data: Vec<PathBuf>,
     /// Model folder to write.
     pub out: PathBuf,
     /// Model shape (its room type must be the dataset's).
@@ -69,6 +74,7 @@ impl TrainOptions {
     pub fn new(data: PathBuf, out: PathBuf, model: ModelConfig) -> TrainOptions {
         TrainOptions {
             data,
+            extra_data: Vec::new(),
             out,
             model,
             steps: 12_000,
@@ -180,6 +186,21 @@ pub fn train(
     })?;
     let bounds = Bounds::from_stats(train_split);
     let mut train_set = load_split(&opts.data, "train", &bounds, cfg)?;
+    let mut hashed = stats_bytes.clone();
+    for extra in &opts.extra_data {
+        let extra_stats = read_stats(extra)?;
+        if extra_stats.room_type != cfg.room_type {
+            return Err(GenError::Input {
+                path: extra.clone(),
+                message: format!("dataset is {} but the model is for {}", extra_stats.room_type, cfg.room_type),
+            });
+        }
+        hashed.extend(std::fs::read(extra.join("stats.json")).map_err(|e| GenError::io(extra.join("stats.json"), e))?);
+        for split in ["train", "val", "test"] {
+            train_set.extend(load_split(extra, split, &bounds, cfg)?);
+        }
+    }
+    let data_hash = if opts.extra_data.is_empty() { data_hash } else { fnv1a_hex(&hashed) };
     balance_categories(&mut train_set, opts.category_balance, cfg);
     if train_set.is_empty() {
         return Err(GenError::Input { path: opts.data.join("train"), message: "no scenes".into() });

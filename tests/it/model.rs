@@ -136,6 +136,29 @@ fn train_cli(data: &Path, out: &Path) -> std::process::Output {
 }
 
 #[test]
+fn extra_data_joins_the_training_set_and_must_be_of_the_same_room_type() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dataset(dir.path(), RoomType::Bedroom);
+    let extra_dir = dir.path().join("extra");
+    let extra = dataset(&extra_dir, RoomType::Bedroom);
+    let count = |d: &Path, split: &str| std::fs::read_dir(d.join(split)).unwrap().count();
+    let mut o = options(&data, &dir.path().join("model"));
+    o.steps = 2;
+    o.extra_data = vec![extra.clone()];
+    let outcome = train(&o, &AtomicBool::new(false), &mut ()).unwrap();
+    assert_eq!(outcome.step, 2);
+    let ckpt = Checkpoint::load(&dir.path().join("model")).unwrap();
+    let all_extra = count(&extra, "train") + count(&extra, "val") + count(&extra, "test");
+    assert_eq!(ckpt.meta.training.train_scenes, count(&data, "train") + all_extra);
+    // A living-room dataset cannot teach a bedroom model.
+    let living = dataset(&extra_dir, RoomType::Living);
+    o.out = dir.path().join("model2");
+    o.extra_data = vec![living.clone()];
+    let err = train(&o, &AtomicBool::new(false), &mut ()).unwrap_err().to_string();
+    assert!(err.contains("living") && err.contains(living.to_str().unwrap()), "{err}");
+}
+
+#[test]
 fn train_writes_a_checkpoint_and_generate_is_deterministic() {
     let dir = tempfile::tempdir().unwrap();
     let data = dataset(dir.path(), RoomType::Bedroom);
