@@ -66,7 +66,7 @@ pub struct GuidanceConfig {
     pub scale: f64,
     /// Guide only at steps t < `until_step` (steps count down from T − 1 to 0) of the linear
     /// schedule; under another schedule, at the steps with less noise than the linear schedule's
-    /// step `until_step` ([`super::Schedule::steps_below`]), so that the guidance starts at the
+    /// step `until_step` ([`super::Schedule::at_linear_noise`]), so that the guidance starts at the
     /// same noise level whatever the model's schedule.
     pub until_step: usize,
     /// Share of its step a piece in an anchored slot takes (the piece serving a contact box, whose
@@ -606,13 +606,13 @@ impl SpatialGuidance {
     /// Guidance for a batch of `scenes` (in batch order).
     pub fn new(cfg: GuidanceConfig, model: &ModelConfig, bounds: &Bounds, scenes: &[&Scene]) -> SpatialGuidance {
         let masks: Vec<SceneMasks> = scenes.iter().map(|s| SceneMasks::of(s)).collect();
-        let until_step = cfg.until_step;
+        let until = Schedule::of(model).at_linear_noise(cfg.until_step);
         SpatialGuidance {
             cfg,
             model: model.clone(),
             bounds: bounds.clone(),
             anchored: masks.iter().map(|m| model.anchored_slots(m.contacts.len())).collect(),
-            until: Schedule::of(model).at_linear_noise(until_step),
+            until,
             masks,
             ceilings: scenes.iter().map(|s| s.floor_plan.height).collect(),
             history: Vec::new(),
