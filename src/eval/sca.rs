@@ -92,10 +92,7 @@ const FAR: f64 = 3.0;
 pub fn layout_features(scene: &Scene, resolution: f64, share_resolution: f64) -> Vec<f32> {
     let polygon = scene.floor_plan.polygon();
     let boxes: Vec<OBox> = scene.objects.iter().map(|o| o.obox()).collect();
-    let wall = polygon
-        .edges()
-        .max_by(|x, y| (x.1 - x.0).length().total_cmp(&(y.1 - y.0).length()))
-        .map_or(0.0, |(a, b)| (b - a).to_angle());
+    let wall = polygon.longest_edge_direction().unwrap_or(0.0);
     let pieces: Vec<(Group, [f64; DESCRIPTORS])> = scene
         .objects
         .iter()
