@@ -15,14 +15,14 @@
 //!   dining table, a living room's last sofa;
 //! - hanging pieces (no bone reaches them in the data's rooms).
 //!
-//! It moves nothing.
+//! (The first three are `in_use`, which `overlaps` spares too.) It moves nothing.
 
 use super::config::{LeftOutConfig, RepairConfig, StepName};
+use super::in_use::in_use;
 use super::pipeline::{RepairStep, StepReport, Workspace};
-use crate::geom::facing;
 use crate::human::ContactBox;
 use crate::physics::{EngineContact, Owner, PHYS_TOLERANCE};
-use crate::scene::{Action, Category, Group, Object, RoomType, Scene};
+use crate::scene::Scene;
 
 /// Removes, from the last to the first, every standing piece that holds nobody (`holds[i]`
 /// false), that a bone of `bones` enters (the scene's exact contacts deeper than the check's
@@ -44,8 +44,7 @@ fn leave_out_entered(
     let mut removed = 0;
     for i in (0..scene.objects.len()).rev() {
         let o = &scene.objects[i];
-        let kept = holds[i] || o.category.is_hanging() || contacts.iter().any(|c| sits_at(c, o, cfg));
-        if !entered[i] || kept || is_last_anchor(scene, i) {
+        if !entered[i] || o.category.is_hanging() || in_use(scene, i, holds, contacts, cfg) {
             continue;
         }
         scene.objects.remove(i);
@@ -53,35 +52,6 @@ fn leave_out_entered(
         removed += 1;
     }
     removed
-}
-
-/// Whether `contact` is a sitter who sits at `o`: its top at least `cfg.sits_at_above` above their
-/// seat (the support box's top) and its footprint over a point on the line from the box's centre
-/// to `cfg.sits_at_reach` beyond its front edge, the way they face.
-fn sits_at(contact: &ContactBox, o: &Object, cfg: &LeftOutConfig) -> bool {
-    let b = &contact.obox;
-    if contact.action != Action::Sit || o.obox().z_range().1 < b.z_range().1 + cfg.sits_at_above {
-        return false;
-    }
-    let ahead = facing(b.yaw);
-    let reach = b.size.y * 0.5 + cfg.sits_at_reach;
-    let footprint = o.obox();
-    (0..=16).any(|k| footprint.footprint_contains(b.center.truncate() + ahead * (reach * k as f64 / 16.0)))
-}
-
-/// Whether `o` is a piece that makes a room of type `room` what it is.
-fn anchors(room: RoomType, o: &Object) -> bool {
-    match room {
-        RoomType::Bedroom => o.category.group() == Group::Bed,
-        RoomType::Dining => o.category == Category::DiningTable,
-        RoomType::Living => o.category.group() == Group::Sofa,
-    }
-}
-
-/// Whether object `i` is the last of the pieces that make its room what it is ([`anchors`]).
-fn is_last_anchor(scene: &Scene, i: usize) -> bool {
-    let anchor = |o: &Object| anchors(scene.room_type, o);
-    anchor(&scene.objects[i]) && scene.objects.iter().filter(|o| anchor(o)).count() == 1
 }
 
 /// The `left_out` step.
@@ -106,9 +76,11 @@ impl RepairStep for LeftOut {
 
 #[cfg(test)]
 mod tests {
+    use super::super::in_use::sits_at;
     use super::*;
     use crate::data::generate_room;
     use crate::human::{Body, Conditions, Motion, sit, stand};
+    use crate::scene::{Action, Category, Object, RoomType};
     use crate::sim::exact_contacts;
     use glam::DVec2;
 

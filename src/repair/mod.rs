@@ -22,7 +22,7 @@
 //! | `overlaps` | overlaps that survive are narrowed away, or the smaller piece goes | `narrowing`, `gap` |
 //!
 //! What steps share lives beside them and is not a step: the people and who holds whom
-//! (`occupancy`, `clearance`), new pieces and seat gaps (`completion`), the walls (`walls`) and the
+//! (`occupancy`, `clearance`), which pieces a removal spares (`in_use`), new pieces and seat gaps (`completion`), the walls (`walls`) and the
 //! geometry of moves, extents and separations (`helpers`). No step imports another step.
 
 mod bed_swap;
@@ -33,6 +33,7 @@ mod config;
 mod deep_seats;
 mod fit_into_room;
 mod helpers;
+mod in_use;
 mod left_out;
 mod occupancy;
 mod off_bodies;

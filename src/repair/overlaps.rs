@@ -4,17 +4,21 @@
 //! - Narrowing: where the shortest footprint separation of a pair runs along one of the smaller
 //!   piece's own axes and is at most 10 cm and a quarter of its size there, that piece loses the
 //!   overlap (and 5 mm) on the side facing the other and keeps its far side where it was.
-//! - Removing: a pair that still overlaps loses its smaller piece — never one that holds a person's
-//!   contact (a seat under a sitter stays; two holders that overlap are left as they are). These are
-//!   mostly the model's duplicates (two nightstands, two beds in one place) and pieces squeezed
-//!   into a gap too small for them.
+//! - Removing: a pair that still overlaps loses its smaller piece — never one in use (`in_use`: it
+//!   holds a person's contact, someone sits at it, or it is the room's last bed, dining table or
+//!   sofa; a pair both in use is left as it is). These are mostly the model's duplicates (two
+//!   nightstands, two beds in one place) and pieces squeezed into a gap too small for them; a
+//!   dining table that touches a bookshelf is not one of them.
 //!
 //! It does not move anything: placement is the rounds' job.
 
+use super::config::LeftOutConfig;
 use super::config::{RepairConfig, StepName};
 use super::helpers::{footprint_separations, narrow_by};
+use super::in_use::in_use;
 use super::pipeline::{RepairStep, StepReport, Workspace};
 use crate::geom::intersection_volume;
+use crate::human::ContactBox;
 use crate::scene::Scene;
 
 /// What resolving overlaps changed.
@@ -26,9 +30,14 @@ pub struct OverlapReport {
     pub removed: usize,
 }
 
-/// Narrows or removes pieces until no two overlap, sparing the pieces `holds[i]` marks (they
-/// hold a person's contact and may only be narrowed).
-fn resolve_overlaps(scene: &mut Scene, holds: &[bool], config: &RepairConfig) -> OverlapReport {
+/// Narrows or removes pieces until no two overlap, sparing the pieces in use (`holds[i]` marks
+/// those holding a person's contact; `contacts` are the people's boxes): they may only be narrowed.
+fn resolve_overlaps(
+    scene: &mut Scene,
+    holds: &[bool],
+    contacts: &[ContactBox],
+    config: &RepairConfig,
+) -> OverlapReport {
     let mut report = OverlapReport::default();
     let mut holds = holds.to_vec();
     for (i, j) in overlapping_pairs(scene) {
@@ -36,7 +45,10 @@ fn resolve_overlaps(scene: &mut Scene, holds: &[bool], config: &RepairConfig) ->
             report.narrowed += 1;
         }
     }
-    while let Some(victim) = overlapping_pairs(scene).into_iter().find_map(|(i, j)| removable(scene, &holds, i, j)) {
+    while let Some(victim) = overlapping_pairs(scene)
+        .into_iter()
+        .find_map(|(i, j)| removable(scene, &holds, contacts, &config.left_out, i, j))
+    {
         scene.objects.remove(victim);
         holds.remove(victim);
         report.removed += 1;
@@ -58,10 +70,17 @@ fn volume(scene: &Scene, i: usize) -> f64 {
     scene.objects[i].size.iter().product()
 }
 
-/// The smaller of the pair that holds no contact (the other one if the smaller holds one).
-fn removable(scene: &Scene, holds: &[bool], i: usize, j: usize) -> Option<usize> {
+/// The smaller of the pair that is not in use (the other one if the smaller is).
+fn removable(
+    scene: &Scene,
+    holds: &[bool],
+    contacts: &[ContactBox],
+    cfg: &LeftOutConfig,
+    i: usize,
+    j: usize,
+) -> Option<usize> {
     let (small, large) = if volume(scene, i) <= volume(scene, j) { (i, j) } else { (j, i) };
-    [small, large].into_iter().find(|&k| !holds[k])
+    [small, large].into_iter().find(|&k| !in_use(scene, k, holds, contacts, cfg))
 }
 
 /// Narrows the smaller piece of an overlapping pair out of the other, if a small cut along one of
@@ -86,8 +105,8 @@ impl RepairStep for Overlaps {
     }
 
     fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport {
-        let (_, holds) = work.holds(scene.objects.len());
-        let r = resolve_overlaps(scene, holds, config);
+        let (people, holds) = work.holds(scene.objects.len());
+        let r = resolve_overlaps(scene, holds, &people.cond.contact_boxes, config);
         StepReport::Overlaps { narrowed: r.narrowed, removed: r.removed }
     }
 }
@@ -110,13 +129,26 @@ mod tests {
             Object::standing("bed", Category::DoubleBed, [0.0, 0.0], [1.6, 2.0, 0.5]),
             Object::standing("n", Category::Nightstand, [1.01, 0.8], [0.5, 0.4, 0.5]),
         ]);
-        let r = resolve_overlaps(&mut s, &[false, false], &RepairConfig::default());
+        let r = resolve_overlaps(&mut s, &[false, false], &[], &RepairConfig::default());
         assert_eq!(r, OverlapReport { narrowed: 1, removed: 0 });
         let n = &s.objects[1];
         // Its far side stays at x = 1.26; its near side moves to 0.805 (4.5 cm cut).
         assert!((n.center[0] + n.size[0] * 0.5 - 1.26).abs() < 1e-12);
         assert!((n.center[0] - n.size[0] * 0.5 - 0.805).abs() < 1e-12, "{n:?}");
         assert_eq!(s.objects[0], Object::standing("bed", Category::DoubleBed, [0.0, 0.0], [1.6, 2.0, 0.5]));
+    }
+
+    #[test]
+    fn a_dining_room_keeps_its_only_table_and_loses_the_bookshelf_it_touches() {
+        // The table (0.80 m³) is smaller than the tall bookshelf (0.83 m³) it overlaps by 20 cm.
+        let mut s = crate::data::generate_room(RoomType::Dining, 1, 0, false).scene;
+        s.objects = vec![
+            Object::standing("table", Category::DiningTable, [0.0, 0.0], [1.22, 0.84, 0.78]),
+            Object::standing("shelf", Category::Bookshelf, [0.0, 0.41], [1.16, 0.38, 1.89]),
+        ];
+        let r = resolve_overlaps(&mut s, &[false, false], &[], &RepairConfig::default());
+        assert_eq!(r.removed, 1);
+        assert_eq!(s.objects.iter().map(|o| o.id.as_str()).collect::<Vec<_>>(), ["table"]);
     }
 
     #[test]
@@ -130,17 +162,20 @@ mod tests {
         };
         let mut s = twins();
         assert_eq!(
-            resolve_overlaps(&mut s, &[false, false, false], &RepairConfig::default()),
+            resolve_overlaps(&mut s, &[false, false, false], &[], &RepairConfig::default()),
             OverlapReport { narrowed: 0, removed: 1 }
         );
         assert_eq!(s.objects.iter().map(|o| o.id.as_str()).collect::<Vec<_>>(), ["a", "far"]);
         // The smaller one holds a contact: the larger goes.
         let mut s = twins();
-        resolve_overlaps(&mut s, &[false, true, false], &RepairConfig::default());
+        resolve_overlaps(&mut s, &[false, true, false], &[], &RepairConfig::default());
         assert_eq!(s.objects.iter().map(|o| o.id.as_str()).collect::<Vec<_>>(), ["b", "far"]);
         // Both hold contacts: both stay.
         let mut s = twins();
-        assert_eq!(resolve_overlaps(&mut s, &[true, true, false], &RepairConfig::default()), OverlapReport::default());
+        assert_eq!(
+            resolve_overlaps(&mut s, &[true, true, false], &[], &RepairConfig::default()),
+            OverlapReport::default()
+        );
         assert_eq!(s.objects.len(), 3);
     }
 }
