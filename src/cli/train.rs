@@ -55,6 +55,10 @@ pub struct TrainArgs {
     /// preset's, true).
     #[arg(long)]
     pub wall_features: Option<bool>,
+    /// Whether the model is self-conditioned on its previous clean estimate: true or false
+    /// (default: the preset's, false; needs x0-prediction).
+    #[arg(long)]
+    pub self_condition: Option<bool>,
     /// Seed of initialisation, batches and noise.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
@@ -126,6 +130,9 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     }
     if let Some(wall_features) = args.wall_features {
         model.wall_features = wall_features;
+    }
+    if let Some(self_condition) = args.self_condition {
+        model.self_condition = self_condition;
     }
     let state = args.out.join(shade_sim::generator::checkpoint::STATE_META_FILE);
     anyhow::ensure!(

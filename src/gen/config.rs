@@ -67,6 +67,13 @@ pub struct ModelConfig {
     /// The noise schedule ([`super::Schedule::of`]). Older configs read as linear.
     #[serde(default)]
     pub schedule: NoiseSchedule,
+    /// Self-conditioning (Chen et al., "Analog Bits"): every object token also gets an embedding
+    /// of the model's own previous clean estimate x̂₀ of it (zeros at the first sampling step), so
+    /// each step refines the last one's layout instead of starting over; trained on half of each
+    /// batch with an estimate from a first pass without it. Needs x₀-prediction. Off in older
+    /// configs.
+    #[serde(default)]
+    pub self_condition: bool,
 }
 
 /// Which noise levels the T steps visit.
@@ -146,6 +153,7 @@ impl ModelConfig {
             wall_features: true,
             prediction: Prediction::X0,
             schedule: NoiseSchedule::Linear,
+            self_condition: false,
         }
     }
 
@@ -175,6 +183,7 @@ impl ModelConfig {
             wall_features: true,
             prediction: Prediction::X0,
             schedule: NoiseSchedule::Linear,
+            self_condition: false,
         }
     }
 
@@ -228,6 +237,9 @@ impl ModelConfig {
                 self.max_contacts,
                 self.slots()
             ));
+        }
+        if self.self_condition && self.prediction != Prediction::X0 {
+            return Some("self_condition needs prediction x0".into());
         }
         if self.diffusion_steps < 2 {
             return Some("diffusion_steps must be at least 2".into());

@@ -174,10 +174,14 @@ pub struct NoisyBatch {
     pub target: Vec<f32>,
     /// x_t = √ᾱ_t x₀ + √(1 − ᾱ_t) ε.
     pub noisy: Vec<f32>,
+    /// For a self-conditioned model: whether each scene gets the model's own first clean estimate
+    /// (half of them, drawn); empty otherwise.
+    pub self_condition: Vec<bool>,
 }
 
 impl NoisyBatch {
-    /// Draws the steps, then the noise, from `rng` (in that order: runs and resumes depend on it).
+    /// Draws the steps, then the noise, then (self-conditioned models only) which scenes are
+    /// self-conditioned, from `rng` (in that order: runs and resumes depend on it).
     pub fn draw(host: HostBatch, schedule: &Schedule, rng: &mut Rng, cfg: &ModelConfig) -> NoisyBatch {
         let per_item = cfg.slots() * cfg.token_dim();
         let t: Vec<usize> = (0..host.size).map(|_| rng.index(schedule.steps())).collect();
@@ -206,7 +210,11 @@ impl NoisyBatch {
                 })
                 .collect(),
         };
-        NoisyBatch { host, t, noise, target, noisy }
+        let self_condition = match cfg.self_condition {
+            true => (0..host.size).map(|_| rng.index(2) == 1).collect(),
+            false => Vec::new(),
+        };
+        NoisyBatch { host, t, noise, target, noisy, self_condition }
     }
 
     /// The loss's denominator: the sum of the loss weights, at least 1.

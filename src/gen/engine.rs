@@ -83,7 +83,22 @@ impl CandleGradients {
             self.vars[&name].set(&tensor)?;
         }
         let (cfg, host) = (&self.cfg, &batch.host);
-        let pred = self.model.forward(&host.token_tensor(&batch.noisy, cfg)?, &batch.t, &host.cond(cfg)?)?;
+        let (noisy, cond) = (host.token_tensor(&batch.noisy, cfg)?, host.cond(cfg)?);
+        // Self-conditioning: the marked scenes get a first pass's clean estimate, held fixed.
+        let estimate = match batch.self_condition.iter().any(|&on| on) {
+            true => {
+                let first = self.model.forward(&noisy, &batch.t, &cond)?.clamp(-1f32, 1f32)?.detach();
+                let per_item = cfg.slots() * cfg.token_dim();
+                let on: Vec<f32> = batch
+                    .self_condition
+                    .iter()
+                    .flat_map(|&on| std::iter::repeat_n(if on { 1f32 } else { 0.0 }, per_item))
+                    .collect();
+                Some((first * host.token_tensor(&on, cfg)?)?)
+            }
+            false => None,
+        };
+        let pred = self.model.forward_with(&noisy, &batch.t, &cond, estimate.as_ref())?;
         let weights = host.token_tensor(&host.weights, cfg)?;
         let err = (pred - host.token_tensor(&batch.target, cfg)?)?.sqr()?;
         Ok(((err * weights)?.sum_all()? / batch.weight_total() as f64)?)

@@ -28,10 +28,12 @@ pub struct FastDenoiser {
     params: Vec<f32>,
 }
 
-/// One batch's encoded conditions, made by [`FastDenoiser::prepare`].
+/// One batch's encoded conditions, made by [`FastDenoiser::prepare`], and for a self-conditioned
+/// model the last step's clean estimate (empty before the first step).
 pub struct PreparedBatch {
     chunks: Vec<ConditionTape>,
     items: usize,
+    estimate: Vec<f32>,
 }
 
 impl std::fmt::Debug for PreparedBatch {
@@ -69,22 +71,34 @@ impl FastDenoiser {
                 self.net.encode(&self.params, &inputs)
             })
             .collect();
-        Ok(PreparedBatch { chunks, items })
+        Ok(PreparedBatch { chunks, items, estimate: Vec::new() })
     }
 
     /// The denoiser's output (B × slots × token_dim: ε or x₀, as the config's `prediction` says)
-    /// for noisy tokens `x` (B × slots × token_dim), every item at step `t`.
+    /// for noisy tokens `x` (B × slots × token_dim), every item at step `t`. A self-conditioned
+    /// model also gets its output of the previous call on `batch` (clamped to [−1, 1]; zeros at
+    /// the first), so calls on one batch must follow the sampling chain.
     pub fn forward(&self, batch: &mut PreparedBatch, x: &[f32], t: usize) -> Vec<f32> {
         let cfg = self.config();
         let per_item = cfg.slots() * cfg.token_dim();
         assert_eq!(x.len(), batch.items * per_item, "tokens of the prepared batch");
+        let chunk = SAMPLING_CHUNK * per_item;
+        let estimate = &batch.estimate;
         let parts: Vec<Vec<f32>> = batch
             .chunks
             .par_iter()
-            .zip(x.par_chunks(SAMPLING_CHUNK * per_item))
-            .map(|(cond, x)| self.net.predict(&self.params, cond, &vec![t; x.len() / per_item], x))
+            .zip(x.par_chunks(chunk))
+            .enumerate()
+            .map(|(i, (cond, x))| {
+                let e = if estimate.is_empty() { &[][..] } else { &estimate[i * chunk..i * chunk + x.len()] };
+                self.net.predict(&self.params, cond, &vec![t; x.len() / per_item], x, e)
+            })
             .collect();
-        parts.concat()
+        let out = parts.concat();
+        if cfg.self_condition {
+            batch.estimate = out.iter().map(|v| v.clamp(-1.0, 1.0)).collect();
+        }
+        out
     }
 }
 
@@ -126,6 +140,45 @@ mod tests {
             let worst = want.iter().zip(&got).fold(0f32, |m, (a, b)| m.max((a - b).abs()));
             assert!(scale > 0.1 && worst < 1e-4 * scale, "t {t}: worst {worst} of {scale}");
         }
+    }
+
+    /// A self-conditioned model (every weight random) gets, at each call after the first, its
+    /// previous output clamped to [−1, 1] as the estimate — what the candle model computes with it.
+    #[test]
+    fn the_fast_pass_carries_the_previous_estimate_of_a_self_conditioned_model() {
+        let cfg = ModelConfig { self_condition: true, ..ModelConfig::tiny(RoomType::Dining) };
+        let mut init = crate::generator::Params::random(2);
+        Denoiser::new(&cfg, &mut init).unwrap();
+        let (layout, _) = ParamLayout::of(&init.snapshot().unwrap()).unwrap();
+        let mut rng = crate::data::Rng::new(9);
+        let values: Vec<f32> = (0..layout.len()).map(|_| 0.3 * rng.normal() as f32).collect();
+        let named = layout.tensors(&values).unwrap().into_iter().collect();
+        let model = Denoiser::new(&cfg, &mut crate::generator::Params::loaded(named)).unwrap();
+        let fast = FastDenoiser::of(&model).unwrap();
+        let bounds = shipped_model(RoomType::Dining).unwrap().meta.bounds;
+        let mut batch = HostBatch::default();
+        for seed in 0..3 {
+            let scene = generate_room(RoomType::Dining, 3, seed, false).scene;
+            batch.push_features(&Features::of(&Conditions::of(&scene), &bounds, &cfg));
+        }
+        let cond = batch.cond(&cfg).unwrap();
+        let mut prepared = fast.prepare(&cond).unwrap();
+        let shape = (3, cfg.slots(), cfg.token_dim());
+        let x: Vec<f32> = (0..3 * cfg.slots() * cfg.token_dim()).map(|_| rng.normal() as f32).collect();
+        let xt = Tensor::from_vec(x.clone(), shape, &Device::Cpu).unwrap();
+        let first = fast.forward(&mut prepared, &x, 120);
+        let second = fast.forward(&mut prepared, &x, 120);
+        let host = |t: Tensor| -> Vec<f32> { t.flatten_all().unwrap().to_vec1().unwrap() };
+        let close = |want: &[f32], got: &[f32]| {
+            let scale = want.iter().fold(0f32, |m, v| m.max(v.abs()));
+            want.iter().zip(got).fold(0f32, |m, (a, b)| m.max((a - b).abs())) < 1e-4 * scale
+        };
+        assert!(close(&host(model.forward(&xt, &[120; 3], &cond).unwrap()), &first));
+        let clamped: Vec<f32> = first.iter().map(|v| v.clamp(-1.0, 1.0)).collect();
+        assert!(clamped.iter().any(|&v| v != 0.0));
+        let estimate = Tensor::from_vec(clamped, shape, &Device::Cpu).unwrap();
+        assert!(close(&host(model.forward_with(&xt, &[120; 3], &cond, Some(&estimate)).unwrap()), &second));
+        assert!(!close(&first, &second), "the estimate changes the output");
     }
 
     #[test]

@@ -125,6 +125,9 @@ pub struct Denoiser {
     pub(super) relation: Option<[Linear; 2]>,
     /// With wall features: the embedding of a slot's wall distances, added to its token.
     pub(super) walls: Option<Linear>,
+    /// With self-conditioning: the embedding of the previous clean estimate of a slot, added to
+    /// its token.
+    pub(super) estimate: Option<Linear>,
     pub(super) time: [Linear; 2],
     pub(super) contact: [Linear; 2],
     pub(super) contact_kind: Tensor,
@@ -163,6 +166,10 @@ impl Denoiser {
                 true => Some(p.linear("walls", WALL_FEATURES, d, false)?),
                 false => None,
             },
+            estimate: match cfg.self_condition {
+                true => Some(p.linear("estimate", cfg.token_dim(), d, true)?),
+                false => None,
+            },
             time: [p.linear("time.0", TIME_FEATURES, d, false)?, p.linear("time.1", d, d, false)?],
             contact: [p.linear("contact.0", CONTACT_FEATURES, d, false)?, p.linear("contact.1", d, d, false)?],
             contact_kind: p.get("contact_kind", &[1, 1, d], Init::Normal(0.02))?,
@@ -184,7 +191,20 @@ impl Denoiser {
     }
 
     /// The output (B, S, token_dim: ε or x₀, as the config's `prediction` says) for noisy tokens `x` (B, S, token_dim) at steps `t`.
+    /// A self-conditioned model gets no previous estimate (zeros), as at the first sampling step.
     pub fn forward(&self, x: &Tensor, t: &[usize], cond: &CondTensors) -> Result<Tensor, GenError> {
+        self.forward_with(x, t, cond, None)
+    }
+
+    /// [`forward`](Self::forward) with the previous clean estimate (B, S, token_dim) of a
+    /// self-conditioned model (`None`: zeros; ignored by a model without self-conditioning).
+    pub fn forward_with(
+        &self,
+        x: &Tensor,
+        t: &[usize],
+        cond: &CondTensors,
+        estimate: Option<&Tensor>,
+    ) -> Result<Tensor, GenError> {
         let (b, slots, _) = x.dims3()?;
         let time = self.time[1].forward(&self.time[0].forward(&time_features(t, x.device())?)?.silu()?)?;
         let contacts = self.contact[1].forward(&self.contact[0].forward(&cond.contacts)?.silu()?)?;
@@ -203,6 +223,17 @@ impl Denoiser {
         }
         if let Some(walls) = &self.walls {
             h = (h + walls.forward(&self.wall_features(x, cond)?)?)?;
+        }
+        if let Some(layer) = &self.estimate {
+            let zeros;
+            let estimate = match estimate {
+                Some(e) => e,
+                None => {
+                    zeros = x.zeros_like()?;
+                    &zeros
+                }
+            };
+            h = (h + layer.forward(estimate)?)?;
         }
         let mut bias = None;
         if self.cfg.contact_tokens {

@@ -65,6 +65,9 @@ pub(super) fn run(net: &GradNet, p: &[f32], tape: &Tape, inp: &ChunkInputs, tota
     if let Some(walls) = &net.walls {
         walls.backward(p, g, &step.wall_in, &dh[..objects * d], None);
     }
+    if let Some(estimate) = &net.estimate {
+        estimate.backward(p, g, &step.estimate_in, &dh[..objects * d], None);
+    }
     if let Some(anchor) = &net.anchor {
         let danchored: Vec<f32> = cond
             .contact_row

@@ -179,6 +179,8 @@ pub(super) struct StepTape {
     pub(super) relation_bias: Vec<Vec<f32>>,
     /// With wall features: every object row's ([`walls::slot_features`]).
     pub(super) wall_in: Vec<f32>,
+    /// With self-conditioning: the previous clean estimate of every object row (zeros: none).
+    pub(super) estimate_in: Vec<f32>,
     /// Per block (items × 6d), then the final layer's (items × 2d).
     pub(super) modulation: Vec<Vec<f32>>,
     pub(super) blocks: Vec<BlockTape>,
@@ -190,8 +192,16 @@ pub(super) struct StepTape {
 }
 
 impl StepTape {
-    /// The pass for noisy tokens `noisy` at steps `t` (one per item).
-    pub(super) fn run(net: &GradNet, p: &[f32], cond: &ConditionTape, t: &[usize], noisy: &[f32]) -> StepTape {
+    /// The pass for noisy tokens `noisy` at steps `t` (one per item), with the previous clean
+    /// estimate `estimate` (laid out like `noisy`; empty: zeros) where the model is self-conditioned.
+    pub(super) fn run(
+        net: &GradNet,
+        p: &[f32],
+        cond: &ConditionTape,
+        t: &[usize],
+        noisy: &[f32],
+        estimate: &[f32],
+    ) -> StepTape {
         let cfg = &net.cfg;
         let (d, b) = (cfg.d_model, t.len());
         let objects = b * cfg.slots();
@@ -221,6 +231,15 @@ impl StepTape {
                 let embedded = walls.map(p, &features);
                 h[..objects * d].iter_mut().zip(&embedded).for_each(|(v, e)| *v += e);
                 features
+            }
+            None => Vec::new(),
+        };
+        let estimate_in = match &net.estimate {
+            Some(layer) => {
+                let values = if estimate.is_empty() { vec![0f32; noisy.len()] } else { estimate.to_vec() };
+                let embedded = layer.map(p, &values);
+                h[..objects * d].iter_mut().zip(&embedded).for_each(|(v, e)| *v += e);
+                values
             }
             None => Vec::new(),
         };
@@ -275,6 +294,7 @@ impl StepTape {
             relation_act,
             relation_bias,
             wall_in,
+            estimate_in,
             modulation,
             blocks,
             final_u,
@@ -348,9 +368,19 @@ pub(super) struct Tape {
 }
 
 impl Tape {
+    /// A self-conditioned model first runs without an estimate; the items that `inp` marks then
+    /// get that pass's clean estimate (clamped to [−1, 1], as sampling clamps it), held fixed.
     pub(super) fn run(net: &GradNet, p: &[f32], inp: &ChunkInputs) -> Tape {
         let cond = ConditionTape::run(net, p, &inp.cond);
-        let step = StepTape::run(net, p, &cond, inp.t, inp.noisy);
+        let mut estimate = Vec::new();
+        if net.estimate.is_some() && inp.self_condition.iter().any(|&on| on) {
+            estimate = StepTape::run(net, p, &cond, inp.t, inp.noisy, &[]).out;
+            let per_item = estimate.len() / inp.t.len().max(1);
+            for (values, &on) in estimate.chunks_exact_mut(per_item).zip(inp.self_condition) {
+                values.iter_mut().for_each(|v| *v = if on { v.clamp(-1.0, 1.0) } else { 0.0 });
+            }
+        }
+        let step = StepTape::run(net, p, &cond, inp.t, inp.noisy, &estimate);
         Tape { cond, step }
     }
 

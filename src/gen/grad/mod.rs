@@ -50,6 +50,7 @@ pub struct GradNet {
     anchor: Option<LinearAt>,
     relation: Option<[LinearAt; 2]>,
     walls: Option<LinearAt>,
+    estimate: Option<LinearAt>,
     time: [LinearAt; 2],
     contact: [LinearAt; 2],
     contact_kind: usize,
@@ -92,6 +93,8 @@ struct ChunkInputs<'a> {
     noisy: &'a [f32],
     target: &'a [f32],
     weights: &'a [f32],
+    /// Per item: whether it is self-conditioned (empty: none is).
+    self_condition: &'a [bool],
 }
 
 impl GradNet {
@@ -135,6 +138,7 @@ impl GradNet {
                 false => None,
             },
             walls: if cfg.wall_features { Some(linear("walls", WALL_FEATURES, d)?) } else { None },
+            estimate: if cfg.self_condition { Some(linear("estimate", cfg.token_dim(), d)?) } else { None },
             time: [linear("time.0", super::config::TIME_FEATURES, d)?, linear("time.1", d, d)?],
             contact: [linear("contact.0", CONTACT_FEATURES, d)?, linear("contact.1", d, d)?],
             contact_kind: find(layout, "contact_kind", &[1, 1, d])?,
@@ -193,6 +197,10 @@ impl GradNet {
                     noisy: span(&batch.noisy, per_item),
                     target: span(&batch.target, per_item),
                     weights: span(&host.weights, per_item),
+                    self_condition: match batch.self_condition.is_empty() {
+                        true => &[],
+                        false => &batch.self_condition[start..end],
+                    },
                 }
             })
             .collect()
@@ -210,9 +218,17 @@ impl GradNet {
         ConditionTape::run(self, params, inputs)
     }
 
-    /// The predicted noise (items × slots × token_dim) of a chunk whose conditions are `cond`.
-    pub(crate) fn predict(&self, params: &[f32], cond: &ConditionTape, t: &[usize], noisy: &[f32]) -> Vec<f32> {
-        forward::StepTape::run(self, params, cond, t, noisy).out
+    /// The output (items × slots × token_dim) of a chunk whose conditions are `cond`, given the
+    /// previous clean estimate `estimate` of a self-conditioned model (empty: zeros).
+    pub(crate) fn predict(
+        &self,
+        params: &[f32],
+        cond: &ConditionTape,
+        t: &[usize],
+        noisy: &[f32],
+        estimate: &[f32],
+    ) -> Vec<f32> {
+        forward::StepTape::run(self, params, cond, t, noisy, estimate).out
     }
 }
 

@@ -84,10 +84,11 @@ fn gradients_equal_candles_at_initialisation() {
 }
 
 #[test]
-fn gradients_equal_candles_with_anchored_slots_relations_and_every_weight_set() {
+fn gradients_equal_candles_with_anchored_slots_relations_self_conditioning_and_every_weight_set() {
     // Every parameter random (the zero-initialised modulations and outputs too), so every path —
-    // the anchored slots' box embedding and the relation bias included — carries a gradient.
-    let cfg = ModelConfig::tiny(RoomType::Living);
+    // the anchored slots' box embedding, the relation bias and the self-conditioning estimate's
+    // embedding included — carries a gradient.
+    let cfg = ModelConfig { self_condition: true, ..ModelConfig::tiny(RoomType::Living) };
     assert!(cfg.anchor_scale > 0.0);
     let mut init = Params::random(4);
     crate::generator::Denoiser::new(&cfg, &mut init).unwrap();
@@ -96,6 +97,7 @@ fn gradients_equal_candles_with_anchored_slots_relations_and_every_weight_set() 
     let params: Vec<f32> = (0..layout.len()).map(|_| 0.2 * rng.normal() as f32).collect();
     let checkpoint = shipped_model(RoomType::Living).unwrap();
     let b = batch(RoomType::Living, &cfg, &checkpoint.meta.bounds, 7);
+    assert!(b.self_condition.contains(&true) && b.self_condition.contains(&false), "{:?}", b.self_condition);
     let grads = compare(&layout, &params, &b, &cfg);
     for (name, (worst, scale)) in &grads {
         if name == "relation.1.bias" {
@@ -109,4 +111,5 @@ fn gradients_equal_candles_with_anchored_slots_relations_and_every_weight_set() 
     }
     assert!(grads.contains_key("anchor.weight") && grads.contains_key("relation.0.weight"));
     assert!(cfg.wall_features && grads.contains_key("walls.weight"));
+    assert!(grads.contains_key("estimate.weight"));
 }
