@@ -59,6 +59,10 @@ pub struct TrainArgs {
     /// (default: the preset's, false; needs x0-prediction).
     #[arg(long)]
     pub self_condition: Option<bool>,
+    /// Min-SNR-γ loss weighting with this γ (e.g. 5): every step's clean-estimate error counts
+    /// min(SNR, γ) (default: the preset's, none).
+    #[arg(long)]
+    pub min_snr: Option<f64>,
     /// Seed of initialisation, batches and noise.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
@@ -133,6 +137,9 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     }
     if let Some(self_condition) = args.self_condition {
         model.self_condition = self_condition;
+    }
+    if args.min_snr.is_some() {
+        model.min_snr = args.min_snr;
     }
     let state = args.out.join(shade_sim::generator::checkpoint::STATE_META_FILE);
     anyhow::ensure!(

@@ -174,6 +174,9 @@ pub struct NoisyBatch {
     pub target: Vec<f32>,
     /// x_t = √ᾱ_t x₀ + √(1 − ᾱ_t) ε.
     pub noisy: Vec<f32>,
+    /// The loss weights: the host's, times each scene's Min-SNR weight where the model has one
+    /// ([`ModelConfig::min_snr`]). The loss is still divided by [`weight_total`](Self::weight_total).
+    pub loss_weights: Vec<f32>,
     /// For a self-conditioned model: whether each scene gets the model's own first clean estimate
     /// (half of them, drawn); empty otherwise.
     pub self_condition: Vec<bool>,
@@ -214,10 +217,23 @@ impl NoisyBatch {
             true => (0..host.size).map(|_| rng.index(2) == 1).collect(),
             false => Vec::new(),
         };
-        NoisyBatch { host, t, noise, target, noisy, self_condition }
+        let loss_weights = match cfg.min_snr {
+            None => host.weights.clone(),
+            Some(_) => host
+                .weights
+                .iter()
+                .enumerate()
+                .map(|(k, &w)| {
+                    let ab = schedule.alpha_bars[t[k / per_item]];
+                    w * cfg.prediction.loss_weight(ab / (1.0 - ab), cfg.min_snr) as f32
+                })
+                .collect(),
+        };
+        NoisyBatch { host, t, noise, target, noisy, loss_weights, self_condition }
     }
 
-    /// The loss's denominator: the sum of the loss weights, at least 1.
+    /// The loss's denominator: the sum of the host's loss weights (before any Min-SNR weight), at
+    /// least 1.
     pub fn weight_total(&self) -> f32 {
         self.host.weights.iter().sum::<f32>().max(1.0)
     }
@@ -308,5 +324,34 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn min_snr_weighs_each_scene_by_its_step_and_leaves_the_denominator() {
+        let scenes: Vec<Scene> = (0..6).map(|i| generate_room(RoomType::Bedroom, 3, i, false).scene).collect();
+        let mut stats = SplitStats::default();
+        scenes.iter().for_each(|s| stats.add(s));
+        let bounds = Bounds::from_stats(&stats);
+        let plain = ModelConfig { prediction: Prediction::V, ..ModelConfig::tiny(RoomType::Bedroom) };
+        let cfg = ModelConfig { min_snr: Some(5.0), ..plain.clone() };
+        let mut host = HostBatch::default();
+        scenes.iter().for_each(|s| host.push(&Example::of(s, &bounds, &cfg), &cfg));
+        let schedule = Schedule::linear(cfg.diffusion_steps);
+        let a = NoisyBatch::draw(host.clone(), &schedule, &mut Rng::new(3), &plain);
+        let b = NoisyBatch::draw(host, &schedule, &mut Rng::new(3), &cfg);
+        assert_eq!((&a.t, &a.noisy), (&b.t, &b.noisy), "the same draws");
+        assert_eq!(a.loss_weights, a.host.weights);
+        assert_eq!(a.weight_total(), b.weight_total());
+        let per_item = cfg.slots() * cfg.token_dim();
+        for (item, &t) in b.t.iter().enumerate() {
+            let ab = schedule.alpha_bars[t];
+            let snr = ab / (1.0 - ab);
+            let want = (snr.min(5.0) / (snr + 1.0)) as f32;
+            let range = item * per_item..(item + 1) * per_item;
+            for (w, h) in b.loss_weights[range.clone()].iter().zip(&b.host.weights[range]) {
+                assert!((w - h * want).abs() <= 1e-6 * h.max(1.0), "item {item} at step {t}");
+            }
+        }
+        assert!(b.t.iter().any(|&t| t < 60) && b.t.iter().any(|&t| t > 100), "{:?}", b.t);
     }
 }

@@ -99,7 +99,7 @@ impl CandleGradients {
             false => None,
         };
         let pred = self.model.forward_with(&noisy, &batch.t, &cond, estimate.as_ref())?;
-        let weights = host.token_tensor(&host.weights, cfg)?;
+        let weights = host.token_tensor(&batch.loss_weights, cfg)?;
         let err = (pred - host.token_tensor(&batch.target, cfg)?)?.sqr()?;
         Ok(((err * weights)?.sum_all()? / batch.weight_total() as f64)?)
     }

@@ -196,7 +196,7 @@ impl GradNet {
                     t: &batch.t[start..end],
                     noisy: span(&batch.noisy, per_item),
                     target: span(&batch.target, per_item),
-                    weights: span(&host.weights, per_item),
+                    weights: span(&batch.loss_weights, per_item),
                     self_condition: match batch.self_condition.is_empty() {
                         true => &[],
                         false => &batch.self_condition[start..end],

@@ -88,7 +88,7 @@ fn gradients_equal_candles_with_anchored_slots_relations_self_conditioning_and_e
     // Every parameter random (the zero-initialised modulations and outputs too), so every path —
     // the anchored slots' box embedding, the relation bias and the self-conditioning estimate's
     // embedding included — carries a gradient.
-    let cfg = ModelConfig { self_condition: true, ..ModelConfig::tiny(RoomType::Living) };
+    let cfg = ModelConfig { self_condition: true, min_snr: Some(5.0), ..ModelConfig::tiny(RoomType::Living) };
     assert!(cfg.anchor_scale > 0.0);
     let mut init = Params::random(4);
     crate::generator::Denoiser::new(&cfg, &mut init).unwrap();
@@ -98,6 +98,7 @@ fn gradients_equal_candles_with_anchored_slots_relations_self_conditioning_and_e
     let checkpoint = shipped_model(RoomType::Living).unwrap();
     let b = batch(RoomType::Living, &cfg, &checkpoint.meta.bounds, 7);
     assert!(b.self_condition.contains(&true) && b.self_condition.contains(&false), "{:?}", b.self_condition);
+    assert_ne!(b.loss_weights, b.host.weights, "Min-SNR weights");
     let grads = compare(&layout, &params, &b, &cfg);
     for (name, (worst, scale)) in &grads {
         if name == "relation.1.bias" {
