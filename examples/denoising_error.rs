@@ -1,9 +1,10 @@
 //! How precise is a model's one-step clean estimate x̂₀ at each noise level, on real rooms?
 //!
 //! Every scene of a dataset split is noised to step t (one seeded draw), the model predicts once
-//! (x̂₀ from its ε, x₀ or v output, clamped as sampling clamps it), and the estimate is compared with the scene itself, slot by slot: the error of a piece's
-//! centre and of its size in centimetres (median and 90th percentile, anchored and free slots
-//! apart), and the share of slots whose class is right. Read beside the sampled layouts' errors,
+//! (x̂₀ from its ε, x₀ or v output as sampling takes it, `Prediction::clean_estimate`), and the
+//! estimate is compared with the scene itself, slot by slot: the error of a piece's centre and of
+//! its size in centimetres (median and 90th percentile, anchored and free slots apart), and the
+//! share of slots whose class is right. Read beside the sampled layouts' errors,
 //! it says whether a model's imprecision is its own (a large one-step error near t = 0) or the
 //! sampling chain's (a small one, with layouts still off).
 //!
@@ -12,8 +13,8 @@
 //! ```
 
 use shade_sim::data::Rng;
-use shade_sim::generator::tokens::{CLASS_OFFSET, slot_class};
-use shade_sim::generator::{Checkpoint, FastDenoiser, HostBatch, Prediction, Schedule, anchors, load_split};
+use shade_sim::generator::tokens::slot_class;
+use shade_sim::generator::{Checkpoint, FastDenoiser, HostBatch, Schedule, anchors, load_split};
 use std::path::PathBuf;
 
 const STEPS: [usize; 9] = [0, 5, 10, 20, 40, 60, 80, 120, 160];
@@ -67,18 +68,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .map(|&x| (ab.sqrt() as f32) * x + ((1.0 - ab).sqrt() as f32) * rng.normal() as f32)
             .collect();
         let mut prepared = fast.prepare(&host.cond(cfg)?)?;
-        let (a, s) = (ab.sqrt() as f32, (1.0 - ab).sqrt() as f32);
         let out = fast.forward(&mut prepared, &noisy, t);
-        let mut estimate: Vec<f32> = out
-            .iter()
-            .zip(&noisy)
-            .map(|(&o, &x)| match cfg.prediction {
-                Prediction::X0 => o,
-                Prediction::V => a * x - s * o,
-                Prediction::Epsilon => (x - s * o) / a,
-            })
-            .map(|v| v.clamp(-1.0, 1.0))
-            .collect();
+        let mut estimate: Vec<f32> =
+            out.iter().zip(&noisy).map(|(&o, &x)| cfg.prediction.clean_estimate(o, x, ab).clamp(-1.0, 1.0)).collect();
         world(&mut estimate);
         let (mut anchored, mut free, mut sizes) = (Vec::new(), Vec::new(), Vec::new());
         let (mut class_right, mut pieces, mut empty_right, mut slots) = (0usize, 0usize, 0usize, 0usize);
@@ -97,15 +89,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 let (a, b) = (metres(w), metres(g));
                 let error = 100.0 * ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
                 if slot < boxes {
-                    anchored.push(error)
+                    anchored.push(error);
                 } else {
-                    free.push(error)
-                }
-                if slot >= boxes {
+                    free.push(error);
                     let (a, b) = (size(w), size(g));
                     sizes.push(100.0 * (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0, f64::max));
                 }
-                debug_assert!(w.len() > CLASS_OFFSET);
             }
         }
         let pair = |v: &mut Vec<f64>| format!("{:.1} / {:.1}", percentile(v, 0.5), percentile(v, 0.9));

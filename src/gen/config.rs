@@ -140,6 +140,17 @@ pub enum Prediction {
 }
 
 impl Prediction {
+    /// The clean estimate x̂₀ of one token value from the denoiser's output `out` for the noisy
+    /// value `x` at a step whose ᾱ is `alpha_bar` (unclamped; in f32 as the sampler had it on tensors).
+    pub fn clean_estimate(self, out: f32, x: f32, alpha_bar: f64) -> f32 {
+        let (a, s) = (alpha_bar.sqrt(), (1.0 - alpha_bar).sqrt());
+        match self {
+            Prediction::Epsilon => (x - out * s as f32) * (1.0 / a) as f32,
+            Prediction::X0 => out,
+            Prediction::V => x * a as f32 - out * s as f32,
+        }
+    }
+
     /// The loss weight of a scene at a step whose signal-to-noise ratio is `snr`, under Min-SNR-γ
     /// ([`ModelConfig::min_snr`]; `None`: 1).
     pub fn loss_weight(self, snr: f64, min_snr: Option<f64>) -> f64 {

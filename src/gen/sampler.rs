@@ -9,7 +9,7 @@
 
 use super::model::CondTensors;
 use super::tokens::{CLASS_OFFSET, slot_class};
-use super::{Denoiser, FastDenoiser, GenError, Prediction, Schedule, anchors};
+use super::{Denoiser, FastDenoiser, GenError, Schedule, anchors};
 use crate::data::Rng;
 use candle_core::{Device, Tensor};
 
@@ -63,14 +63,12 @@ pub fn sample(
     let mut prepared = fast.prepare(cond)?;
     let mut x = gaussian(&mut rngs)?;
     for t in (0..schedule.steps()).rev() {
-        let out = Tensor::from_vec(fast.forward(&mut prepared, &x.flatten_all()?.to_vec1()?, t), shape, &Device::Cpu)?;
+        let noisy: Vec<f32> = x.flatten_all()?.to_vec1()?;
+        let out = fast.forward(&mut prepared, &noisy, t);
         let ab = schedule.alpha_bars[t];
-        let x0 = match cfg.prediction {
-            Prediction::Epsilon => ((&x - (out * (1.0 - ab).sqrt())?)? / ab.sqrt())?,
-            Prediction::X0 => out,
-            Prediction::V => ((&x * ab.sqrt())? - (out * (1.0 - ab).sqrt())?)?,
-        }
-        .clamp(-1f32, 1f32)?;
+        let x0: Vec<f32> =
+            out.iter().zip(&noisy).map(|(&o, &x)| cfg.prediction.clean_estimate(o, x, ab).clamp(-1.0, 1.0)).collect();
+        let x0 = Tensor::from_vec(x0, shape, &Device::Cpu)?;
         let x0 = if t < projection_steps { zero_empty_attributes(&x0, cfg)? } else { x0 };
         let x0 = match guidance.as_deref_mut() {
             Some(g) => frame(&g.guide(&frame(&x0, false)?, t)?, true)?,
