@@ -27,13 +27,23 @@ fn percentile(values: &mut [f64], q: f64) -> f64 {
     values[((values.len() - 1) as f64 * q).round() as usize]
 }
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+fn main() -> std::process::ExitCode {
+    match run() {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            std::process::ExitCode::from(2)
+        }
+    }
+}
+
+fn run() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let [model, data, rest @ ..] = &args[..] else {
         return Err("usage: denoising_error MODEL_DIR DATA_DIR [SPLIT] [SCENES]".into());
     };
     let split = rest.first().map_or("val", |s| s.as_str());
-    let limit: usize = rest.get(1).map_or(Ok(usize::MAX), |s| s.parse())?;
+    let limit: usize = rest.get(1).map_or(Ok(usize::MAX), |s| s.parse().map_err(|e| format!("SCENES {s:?}: {e}")))?;
     let checkpoint = Checkpoint::load(&PathBuf::from(model))?;
     let (cfg, bounds) = (&checkpoint.meta.model, &checkpoint.meta.bounds);
     let schedule = Schedule::of(cfg);
