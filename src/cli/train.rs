@@ -63,6 +63,10 @@ pub struct TrainArgs {
     /// min(SNR, γ) (default: the preset's, none).
     #[arg(long)]
     pub min_snr: Option<f64>,
+    /// A floor under the Min-SNR weight (e.g. 1): the clean-estimate error counts clamp(SNR,
+    /// floor, γ), so the noisiest steps still count (needs --min-snr; default: none).
+    #[arg(long)]
+    pub min_snr_floor: Option<f64>,
     /// Seed of initialisation, batches and noise.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
@@ -140,6 +144,9 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     }
     if args.min_snr.is_some() {
         model.min_snr = args.min_snr;
+    }
+    if args.min_snr_floor.is_some() {
+        model.min_snr_floor = args.min_snr_floor;
     }
     let state = args.out.join(shade_sim::generator::checkpoint::STATE_META_FILE);
     anyhow::ensure!(

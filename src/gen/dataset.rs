@@ -225,7 +225,7 @@ impl NoisyBatch {
                 .enumerate()
                 .map(|(k, &w)| {
                     let ab = schedule.alpha_bars[t[k / per_item]];
-                    w * cfg.prediction.loss_weight(ab / (1.0 - ab), cfg.min_snr) as f32
+                    w * cfg.prediction.loss_weight(ab / (1.0 - ab), cfg.min_snr, cfg.min_snr_floor) as f32
                 })
                 .collect(),
         };
