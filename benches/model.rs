@@ -51,6 +51,8 @@ struct Setup {
     layout: ParamLayout,
     params: Vec<f32>,
     schedule: Schedule,
+    /// Every step (DDPM's chain).
+    visited: Vec<usize>,
 }
 
 fn setup() -> Setup {
@@ -60,7 +62,9 @@ fn setup() -> Setup {
     Denoiser::new(&cfg, &mut init).unwrap();
     let (layout, params) = ParamLayout::of(&init.snapshot().unwrap()).unwrap();
     let shipped = shade_sim::generator::shipped_model(RoomType::Bedroom).unwrap().denoiser;
-    Setup { schedule: Schedule::linear(cfg.diffusion_steps), cfg, layout, params, shipped }
+    let schedule = Schedule::linear(cfg.diffusion_steps);
+    let visited = (0..schedule.steps()).collect();
+    Setup { schedule, visited, cfg, layout, params, shipped }
 }
 
 /// A training run's state: an engine, the parameters and the optimiser.
@@ -84,7 +88,7 @@ fn sample_once(s: &Setup, rng: &mut Rng) {
     let cond = conditions(&s.cfg, SAMPLE_BATCH, rng);
     let seeds: Vec<u64> = (0..SAMPLE_BATCH as u64).collect();
     let projection = empty_projection_steps(&s.schedule);
-    black_box(sample(&s.shipped, &s.schedule, &cond, &seeds, projection, None).unwrap());
+    black_box(sample(&s.shipped, &s.schedule, &s.visited, &cond, &seeds, projection, None).unwrap());
 }
 
 /// A random training batch like the reference's: random tokens and conditions, every weight 1.

@@ -20,6 +20,8 @@ pub struct Generator {
     /// The model.
     pub checkpoint: Checkpoint,
     schedule: Schedule,
+    /// The steps the sampler visits ([`Schedule::respaced`]; all T by default).
+    visited: Vec<usize>,
     empty_projection: bool,
 }
 
@@ -27,7 +29,16 @@ impl Generator {
     /// A generator over `checkpoint`.
     pub fn new(checkpoint: Checkpoint) -> Generator {
         let schedule = Schedule::of(&checkpoint.meta.model);
-        Generator { checkpoint, schedule, empty_projection: true }
+        let visited = (0..schedule.steps()).collect();
+        Generator { checkpoint, schedule, visited, empty_projection: true }
+    }
+
+    /// The same generator sampling with `n` model calls instead of T: the chain respaced to `n`
+    /// evenly spaced steps ([`Schedule::respaced`]); guidance and the empty-slot projection still
+    /// act by noise level.
+    pub fn with_sampling_steps(self, n: usize) -> Generator {
+        let visited = self.schedule.respaced(n);
+        Generator { visited, ..self }
     }
 
     /// The same generator without the sampler's empty-slot projection: the model's raw output, which
@@ -89,6 +100,7 @@ impl Generator {
             let tokens = sample(
                 &self.checkpoint.denoiser,
                 &self.schedule,
+                &self.visited,
                 &cond,
                 &seeds,
                 if self.empty_projection { empty_projection_steps(&self.schedule) } else { 0 },

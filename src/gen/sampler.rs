@@ -23,13 +23,15 @@ pub trait Guidance {
     fn finish(&mut self, _item: usize, _scene: &mut crate::scene::Scene) {}
 }
 
-/// Samples a batch; `seeds[i]` drives item i. In steps t < `projection_steps` the empty slots of x̂0
+/// Samples a batch; `seeds[i]` drives item i, visiting the steps `visited` (ascending, from
+/// [`Schedule::respaced`]; all T for DDPM's chain) from the last down. In steps t < `projection_steps` the empty slots of x̂0
 /// get zero attributes ([`empty_projection_steps`] is the default; 0 samples the model's raw
 /// output). Returns the tokens in world form (B × slots × token_dim); the diffusion itself runs in
 /// the model's frame ([`anchors`]), and the guidance sees world tokens.
 pub fn sample(
     model: &Denoiser,
     schedule: &Schedule,
+    visited: &[usize],
     cond: &CondTensors,
     seeds: &[u64],
     projection_steps: usize,
@@ -62,7 +64,7 @@ pub fn sample(
     let fast = FastDenoiser::of(model)?;
     let mut prepared = fast.prepare(cond)?;
     let mut x = gaussian(&mut rngs)?;
-    for t in (0..schedule.steps()).rev() {
+    for (i, &t) in visited.iter().enumerate().rev() {
         let noisy: Vec<f32> = x.flatten_all()?.to_vec1()?;
         let out = fast.forward(&mut prepared, &noisy, t);
         let ab = schedule.alpha_bars[t];
@@ -74,10 +76,10 @@ pub fn sample(
             Some(g) => frame(&g.guide(&frame(&x0, false)?, t)?, true)?,
             None => x0,
         };
-        let (c0, ct, var) = schedule.posterior(t);
+        let (c0, ct, var) = schedule.posterior_to(t, i.checked_sub(1).map(|j| visited[j]));
         let mean = ((x0 * c0)? + (&x * ct)?)?;
         // Detached so that nothing (a guidance gradient) chains the steps' graphs.
-        x = if t > 0 { (mean + (gaussian(&mut rngs)? * var.sqrt())?)? } else { mean }.detach();
+        x = if i > 0 { (mean + (gaussian(&mut rngs)? * var.sqrt())?)? } else { mean }.detach();
     }
     Ok(frame(&x, false)?.flatten_all()?.to_vec1::<f32>()?)
 }

@@ -96,20 +96,39 @@ impl Schedule {
         self.betas.len()
     }
 
-    /// ᾱ_{t−1}, with ᾱ_{−1} = 1.
-    pub fn alpha_bar_prev(&self, t: usize) -> f64 {
-        if t == 0 { 1.0 } else { self.alpha_bars[t - 1] }
-    }
-
     /// Coefficients (of x̂0, of x_t) of the posterior mean q(x_{t−1} | x_t, x̂0), and its variance.
     pub fn posterior(&self, t: usize) -> (f64, f64, f64) {
-        let beta = self.betas[t];
+        self.posterior_to(t, t.checked_sub(1))
+    }
+
+    /// Like [`posterior`](Self::posterior) for a jump from step `t` to the earlier step `s` (`None`:
+    /// the clean data, ᾱ = 1): the posterior q(x_s | x_t, x̂0) of the chain that visits only the
+    /// steps a [`respaced`](Self::respaced) sampler visits (Nichol & Dhariwal's respacing), whose
+    /// β for the jump is 1 − ᾱ_t / ᾱ_s. With `s = t − 1` it is the full chain's.
+    pub fn posterior_to(&self, t: usize, s: Option<usize>) -> (f64, f64, f64) {
         let ab = self.alpha_bars[t];
-        let ab_prev = self.alpha_bar_prev(t);
+        let ab_prev = s.map_or(1.0, |s| self.alpha_bars[s]);
+        // The full chain's own β where the jump is one step (bit-identical to it; the cosine
+        // schedule clips its last β).
+        let beta = if s == t.checked_sub(1) { self.betas[t] } else { 1.0 - ab / ab_prev };
         let c0 = beta * ab_prev.sqrt() / (1.0 - ab);
         let ct = (1.0 - ab_prev) * (1.0 - beta).sqrt() / (1.0 - ab);
         let var = beta * (1.0 - ab_prev) / (1.0 - ab);
         (c0, ct, var)
+    }
+
+    /// The steps a sampler with `n` model calls visits, ascending: `n` steps evenly spaced from 0
+    /// to T − 1 (every step when `n` ≥ T; at least 0 and T − 1, so the chain still starts at pure
+    /// noise and ends at the least noise).
+    pub fn respaced(&self, n: usize) -> Vec<usize> {
+        let last = self.steps() - 1;
+        if n >= self.steps() {
+            return (0..self.steps()).collect();
+        }
+        let n = n.max(2);
+        let mut visited: Vec<usize> = (0..n).map(|i| ((i * last) as f64 / (n - 1) as f64).round() as usize).collect();
+        visited.dedup();
+        visited
     }
 }
 
@@ -181,7 +200,36 @@ mod tests {
             let x0 = 1.0;
             let xt = s.alpha_bars[t].sqrt() * x0;
             let mean = c0 * x0 + ct * xt;
-            assert!((mean - s.alpha_bar_prev(t).sqrt() * x0).abs() < 1e-12);
+            assert!((mean - s.alpha_bars[t - 1].sqrt() * x0).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn a_respaced_chain_visits_evenly_spaced_steps_from_pure_noise_to_the_least() {
+        let s = Schedule::log_snr(200);
+        // i · 199 / 4 rounded: 0, 49.75, 99.5, 149.25, 199.
+        assert_eq!(s.respaced(5), vec![0, 50, 100, 149, 199]);
+        assert_eq!(s.respaced(2), vec![0, 199]);
+        assert_eq!(s.respaced(0), vec![0, 199]);
+        assert_eq!(s.respaced(200), (0..200).collect::<Vec<_>>());
+        assert_eq!(s.respaced(500).len(), 200);
+    }
+
+    #[test]
+    fn a_jump_keeps_the_clean_signal_and_one_step_is_the_full_chain() {
+        for s in [Schedule::linear(200), Schedule::log_snr(200), Schedule::cosine(200)] {
+            for t in [1, 60, 199] {
+                assert_eq!(s.posterior_to(t, Some(t - 1)), s.posterior(t));
+            }
+            // From t 150 to s 50: the mean of a noiseless x_t = √ᾱ_t x0 with x̂0 = x0 is √ᾱ_s x0,
+            // and the variance is β' (1 − ᾱ_s) / (1 − ᾱ_t) with β' = 1 − ᾱ_t / ᾱ_s.
+            let (ab_t, ab_s) = (s.alpha_bars[150], s.alpha_bars[50]);
+            let (c0, ct, var) = s.posterior_to(150, Some(50));
+            assert!((c0 + ct * ab_t.sqrt() - ab_s.sqrt()).abs() < 1e-12);
+            assert!((var - (1.0 - ab_t / ab_s) * (1.0 - ab_s) / (1.0 - ab_t)).abs() < 1e-12);
+            // To the clean data: the estimate itself.
+            let (c0, ct, var) = s.posterior_to(150, None);
+            assert!((c0 - 1.0).abs() < 1e-9 && ct.abs() < 1e-9 && var.abs() < 1e-9, "{c0} {ct} {var}");
         }
     }
 }
