@@ -33,8 +33,9 @@ train() {
 }
 # Four times the rooms: the 4,551 of the first draw alone overfit by 36,000 steps, and with them
 # B 0.5 drew rare categories at 2–6× their share (docs/RESULTS.md, "Four ways to a more precise
-# bedroom model").
-train bedroom 48000 0.25 --extra-data "$data/bedroom-extra"
+# bedroom model"). v-prediction on the log-SNR schedule with Min-SNR-5 floored at 1 (docs/RESULTS.md,
+# "A floor under Min-SNR").
+train bedroom 48000 0.25 --extra-data "$data/bedroom-extra" --prediction v --schedule log_snr --min-snr 5 --min-snr-floor 1
 # Living and dining rooms keep the earlier preset's yaw and no wall distances: the new preset
 # scored worse on their val splits (docs/RESULTS.md).
 train living 36000 0.25 --extra-data "$data/living-extra" --anchored-yaw box --wall-features false
