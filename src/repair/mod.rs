@@ -11,9 +11,7 @@
 //! |---|---|---|
 //! | `settle` | contact boxes given to pieces that afford them (a real piece added for a box none can hold), seats turned and fitted to their people, pieces squared and put back against walls, rounds of moves: under their people, off paths, apart, inside | `settle`, `holding`, `completion`, `walls`, `gap` |
 //! | `relocate` | a piece holding nobody still in people's way moved to a free spot | `relocate`, `walls`, `gap` |
-//! | `bed_swap` | a double bed in people's way becomes the narrowest real double or a single bed | `bed_swap` |
 //! | `deep_seats` | a chair or sofa too deep for its sitters' knees loses depth at the front | – |
-//! | `beds_to_sitters` | a bed under its sitters' lower legs is narrowed on their side | `holding` |
 //! | `sofas_to_sleepers` | a sofa whose sleeper lies behind the seat's middle loses depth at the front | `sofas_to_sleepers` |
 //! | `wide_seats` | a sofa whose people overhang its seat grows at that end | `wide_seats`, `gap` |
 //! | `fit_into_room` | a piece poking out of the floor plan is moved back or narrowed | `fit_into_room`, `narrowing`, `holding`, `gap` |
@@ -25,8 +23,6 @@
 //! (`occupancy`, `clearance`), which pieces a removal spares (`in_use`), new pieces and seat gaps (`completion`), the walls (`walls`) and the
 //! geometry of moves, extents and separations (`helpers`). No step imports another step.
 
-mod bed_swap;
-mod beds_to_sitters;
 mod clearance;
 mod completion;
 mod config;
@@ -50,7 +46,7 @@ mod wide_seats;
 pub use clearance::Clearance;
 pub use completion::SeatGaps;
 pub use config::{
-    BedSwapConfig, CompletionConfig, FitIntoRoomConfig, HoldingConfig, LeftOutConfig, NarrowingConfig, OffBodiesConfig,
+    CompletionConfig, FitIntoRoomConfig, HoldingConfig, LeftOutConfig, NarrowingConfig, OffBodiesConfig,
     RelocateConfig, RepairConfig, RepairConfigError, SettleConfig, SofasToSleepersConfig, StepName, WallsConfig,
     WideSeatsConfig,
 };
@@ -65,9 +61,7 @@ pub fn step(name: StepName) -> Box<dyn RepairStep> {
     match name {
         StepName::Settle => Box::new(settle::Settle),
         StepName::Relocate => Box::new(relocate::Relocate),
-        StepName::BedSwap => Box::new(bed_swap::BedSwap),
         StepName::DeepSeats => Box::new(deep_seats::DeepSeats),
-        StepName::BedsToSitters => Box::new(beds_to_sitters::BedsToSitters),
         StepName::SofasToSleepers => Box::new(sofas_to_sleepers::SofasToSleepers),
         StepName::WideSeats => Box::new(wide_seats::WideSeats),
         StepName::FitIntoRoom => Box::new(fit_into_room::FitIntoRoom),

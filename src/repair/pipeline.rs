@@ -63,19 +63,9 @@ pub enum StepReport {
         /// Pieces moved.
         relocated: usize,
     },
-    /// `bed_swap`: double beds swapped.
-    BedSwap {
-        /// Beds swapped.
-        swapped: usize,
-    },
     /// `deep_seats`: seats trimmed at the front.
     DeepSeats {
         /// Seats trimmed.
-        trimmed: usize,
-    },
-    /// `beds_to_sitters`: beds narrowed on their sitters' side.
-    BedsToSitters {
-        /// Beds narrowed.
         trimmed: usize,
     },
     /// `sofas_to_sleepers`: sofas trimmed at the front.
@@ -118,9 +108,7 @@ impl StepReport {
         match *self {
             StepReport::Settle(s) => s.resized + s.turned + s.added + s.squared + s.walled,
             StepReport::Relocate { relocated: n }
-            | StepReport::BedSwap { swapped: n }
             | StepReport::DeepSeats { trimmed: n }
-            | StepReport::BedsToSitters { trimmed: n }
             | StepReport::SofasToSleepers { trimmed: n }
             | StepReport::WideSeats { widened: n }
             | StepReport::FitIntoRoom { narrowed: n }
@@ -185,10 +173,7 @@ impl RepairReport {
             match *s {
                 StepReport::Settle(r) => t.settle = t.settle.plus(&r),
                 StepReport::Relocate { relocated } => t.relocated += relocated,
-                StepReport::BedSwap { swapped } => t.swapped += swapped,
-                StepReport::DeepSeats { trimmed }
-                | StepReport::BedsToSitters { trimmed }
-                | StepReport::SofasToSleepers { trimmed } => t.trimmed += trimmed,
+                StepReport::DeepSeats { trimmed } | StepReport::SofasToSleepers { trimmed } => t.trimmed += trimmed,
                 StepReport::WideSeats { widened } => t.widened += widened,
                 StepReport::FitIntoRoom { narrowed } => t.narrowed += narrowed,
                 StepReport::OffBodies { pushed } => t.pushed += pushed,
@@ -211,9 +196,7 @@ pub struct RepairTotals {
     pub settle: SettleReport,
     /// Pieces moved to a free spot.
     pub relocated: usize,
-    /// Double beds swapped.
-    pub swapped: usize,
-    /// Pieces trimmed at the front or on a sitter's side.
+    /// Seats and sofas trimmed at the front.
     pub trimmed: usize,
     /// Sofas widened.
     pub widened: usize,
@@ -233,7 +216,6 @@ impl std::iter::Sum for RepairTotals {
         iter.fold(RepairTotals::default(), |a, t| RepairTotals {
             settle: a.settle.plus(&t.settle),
             relocated: a.relocated + t.relocated,
-            swapped: a.swapped + t.swapped,
             trimmed: a.trimmed + t.trimmed,
             widened: a.widened + t.widened,
             narrowed: a.narrowed + t.narrowed,
