@@ -63,7 +63,7 @@ fn setup() -> Setup {
     let (layout, params) = ParamLayout::of(&init.snapshot().unwrap()).unwrap();
     let shipped = shade_sim::generator::shipped_model(RoomType::Bedroom).unwrap().denoiser;
     let schedule = Schedule::linear(cfg.diffusion_steps);
-    let visited = (0..schedule.steps()).collect();
+    let visited = schedule.respaced(schedule.steps());
     Setup { schedule, visited, cfg, layout, params, shipped }
 }
 

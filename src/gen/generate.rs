@@ -29,7 +29,7 @@ impl Generator {
     /// A generator over `checkpoint`.
     pub fn new(checkpoint: Checkpoint) -> Generator {
         let schedule = Schedule::of(&checkpoint.meta.model);
-        let visited = (0..schedule.steps()).collect();
+        let visited = schedule.respaced(schedule.steps());
         Generator { checkpoint, schedule, visited, empty_projection: true }
     }
 
