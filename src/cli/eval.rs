@@ -11,8 +11,8 @@
 //!
 //! Realism beyond SHADE's table, against the same reference scenes: each category's per-room count
 //! distribution (`count KL`, the mean over categories of KL(reference ‖ row), and `unseen`, the
-//! share of the row's rooms with a count no reference room has; `counts` in JSON, with the
-//! offending category counts), `unreal`, the share of rooms with a piece further than 15 cm outside
+//! share of the row's rooms with a count no room of the training data has — the dataset's `train`
+//! split, else the reference itself; `counts` in JSON, with the offending category counts), `unreal`, the share of rooms with a piece further than 15 cm outside
 //! its category's real sizes (`sizes` in JSON, by category and axis), and SCA (`eval::sca`: the held-out accuracy of a small classifier
 //! trained to tell the row's layouts from the reference's; 0.5 is indistinguishable). `--no-sca`
 //! skips SCA.
@@ -108,6 +108,11 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     let room = reference[0].room_type;
     let freq = category_frequencies(reference.iter(), room);
     let counts = CountDistribution::of(&reference, room);
+    // The training rooms, when the reference is a dataset with them: the pool of the CKL floors and
+    // the counts a real room has.
+    let train = args.reference.join("train");
+    let pool = if test.is_dir() && train.is_dir() { Some(load_all(&train)?) } else { None };
+    let seen = pool.as_deref().map_or_else(|| counts.clone(), |p| CountDistribution::of(p, room));
     let mut rows = Vec::new();
     for dir in &args.pred {
         let scenes = load_all(dir)?;
@@ -125,7 +130,7 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
         if !args.no_physics {
             row.physics = Some(physics(&scenes));
         }
-        row.counts = Some(count_report(&scenes, &counts));
+        row.counts = Some(count_report(&scenes, &counts, &seen));
         row.sizes = Some(size_report(&scenes));
         if !args.no_sca {
             row.sca = sca(&scenes, &reference, &ScaConfig::default());
@@ -141,7 +146,10 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
             r.layout_ratio = Some(r.layout_ratio_to(&base));
         }
     }
-    let (floors, contact) = ckl_floors(&args.reference, &reference, &rows, room, &freq)?;
+    let (floors, contact) = match &pool {
+        Some(pool) => ckl_floors(pool, &reference, &rows, room, &freq),
+        None => (Vec::new(), None),
+    };
     for r in &mut rows {
         r.ckl_floor = floors.iter().find(|f| f.layouts == r.scenes).copied();
         r.ckl_contact_floor = contact.filter(|f| f.layouts == r.scenes);
@@ -175,26 +183,20 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
 /// Draws of real layouts per floor.
 const FLOOR_DRAWS: usize = 200;
 
-/// The CKL floor for each distinct row size, from the `reference` dataset's train split, and the
-/// contact floor of its `test` scenes when a row is as large as they are (none for a plain folder
-/// or a dataset without test and train splits).
+/// The CKL floor for each distinct row size, drawn from the dataset's train split `pool`, and the
+/// contact floor of its `test` scenes when a row is as large as they are.
 fn ckl_floors(
-    reference: &Path,
+    pool: &[Scene],
     test: &[Scene],
     rows: &[EvalRow],
     room: RoomType,
     freq: &[f64],
-) -> anyhow::Result<(Vec<CklFloor>, Option<CklFloor>)> {
-    let train = reference.join("train");
-    if !reference.join("test").is_dir() || !train.is_dir() {
-        return Ok((Vec::new(), None));
-    }
-    let pool = load_all(&train)?;
+) -> (Vec<CklFloor>, Option<CklFloor>) {
     let mut sizes: Vec<usize> = rows.iter().map(|r| r.scenes).collect();
     sizes.sort_unstable();
     sizes.dedup();
-    let contact = sizes.contains(&test.len()).then(|| contact_floor(test, &pool, room, freq, FLOOR_DRAWS, 0)).flatten();
-    Ok((sizes.into_iter().filter_map(|n| ckl_floor(&pool, room, freq, n, FLOOR_DRAWS, 0)).collect(), contact))
+    let contact = sizes.contains(&test.len()).then(|| contact_floor(test, pool, room, freq, FLOOR_DRAWS, 0)).flatten();
+    (sizes.into_iter().filter_map(|n| ckl_floor(pool, room, freq, n, FLOOR_DRAWS, 0)).collect(), contact)
 }
 
 fn table(rows: &[EvalRow]) -> String {
