@@ -99,6 +99,13 @@ pub struct GuidanceConfig {
     /// 36 of 492 guided val bedrooms); kept within what real pieces are, it must move instead.
     #[serde(default)]
     pub real_sizes: Option<f64>,
+    /// Share of the smaller piece's volume above which two pieces in anchored slots are folded
+    /// into one, the larger (footprint) kept in all their slots; `None` = never. Two people on one
+    /// sofa are two anchored slots, which the training data always gives the same piece; when the
+    /// model puts a loveseat in one and an armchair in the other on top of each other, the
+    /// overlap term would push the two apart, away from their people.
+    #[serde(default)]
+    pub fold_anchored: Option<f64>,
 }
 
 impl GuidanceConfig {
@@ -108,7 +115,8 @@ impl GuidanceConfig {
     /// as the share of the smaller piece, J_c 4 holding the pieces under people (which otherwise
     /// move like any piece), J_p and J_s 1 keeping them out of the bodies and up against them, and
     /// J_q 1 turning pieces square to the walls, and in each of the last 20 steps up to 128 gradient
-    /// steps of at most 3 cm.
+    /// steps of at most 3 cm; pieces in anchored slots overlapping by more than a quarter of the
+    /// smaller are folded into one (docs/RESULTS.md, "One piece for the people on it").
     pub fn all() -> GuidanceConfig {
         GuidanceConfig {
             motion: 1.0,
@@ -129,6 +137,7 @@ impl GuidanceConfig {
             phys_until: 20,
             phys_every: 4,
             real_sizes: Some(crate::furniture::REAL_SIZE_MARGIN),
+            fold_anchored: Some(0.25),
         }
     }
 
@@ -149,6 +158,7 @@ impl GuidanceConfig {
             anchored_mobility: 0.0,
             square: 0.0,
             real_sizes: None,
+            fold_anchored: None,
             ..Self::all()
         }
     }
@@ -226,6 +236,9 @@ impl GuidanceConfig {
         }
         if let Some(margin) = self.real_sizes.filter(|m| !(m.is_finite() && *m >= 0.0)) {
             return Some(format!("real_sizes: must be a distance ≥ 0 in metres, not {margin}"));
+        }
+        if let Some(share) = self.fold_anchored.filter(|f| !(0.0..=1.0).contains(f)) {
+            return Some(format!("fold_anchored: must be a share within 0..1, not {share}"));
         }
         if self.every == 0 {
             return Some("every: must be at least 1".into());
@@ -675,7 +688,10 @@ fn guide_item(
     cfg: &GuidanceConfig,
 ) -> f64 {
     let dim = model.token_dim();
-    let decoded = decode_slots(tokens, masks.window.center, ceiling, bounds, model);
+    let mut decoded = decode_slots(tokens, masks.window.center, ceiling, bounds, model);
+    if let Some(share) = cfg.fold_anchored {
+        fold_anchored(&mut decoded, tokens, anchored, share, dim);
+    }
     let objects: Vec<GuidedObject> = decoded.iter().map(|(_, o)| GuidedObject::of(o)).collect();
     let anchors: Vec<Vec<usize>> =
         decoded.iter().map(|(slots, _)| slots.iter().copied().filter(|&s| s < anchored).collect()).collect();
@@ -709,6 +725,38 @@ fn guide_item(
         }
     }
     j
+}
+
+/// Folds pieces in anchored slots (`slot < anchored`) that overlap by more than `share` of the
+/// smaller one's volume into one: the one with the larger footprint (the earlier on a tie) keeps
+/// its place, and its whole token (classes too) is written into the other's slots, which join its
+/// list of copies.
+fn fold_anchored(decoded: &mut Vec<(Vec<usize>, Object)>, tokens: &mut [f32], anchored: usize, share: f64, dim: usize) {
+    let is_anchored = |slots: &[usize]| slots.iter().any(|&s| s < anchored);
+    let footprint = |o: &Object| o.size[0] * o.size[1];
+    let mut i = 0;
+    while i < decoded.len() {
+        let partner = (i + 1..decoded.len()).find(|&j| {
+            is_anchored(&decoded[i].0)
+                && is_anchored(&decoded[j].0)
+                && Overlap::Smaller.of(&decoded[i].1.obox(), &decoded[j].1.obox()) > share
+        });
+        let Some(j) = partner else {
+            i += 1;
+            continue;
+        };
+        let (keep, drop) = if footprint(&decoded[j].1) > footprint(&decoded[i].1) { (j, i) } else { (i, j) };
+        let source = decoded[keep].0[0];
+        let token: Vec<f32> = tokens[source * dim..(source + 1) * dim].to_vec();
+        let (slots, _) = decoded.remove(drop);
+        for &s in &slots {
+            tokens[s * dim..(s + 1) * dim].copy_from_slice(&token);
+        }
+        let keep = if drop < keep { keep - 1 } else { keep };
+        decoded[keep].0.extend(slots);
+        // The kept piece may now overlap another: look at the pair from the start again.
+        i = 0;
+    }
 }
 
 /// Keeps a token's size (entries 3..6) within `margin` (m) of its category's real pieces' range on
@@ -983,6 +1031,13 @@ mod tests {
         assert!(bad(GuidanceConfig { scale: f64::NAN, ..GuidanceConfig::all() }).starts_with("scale:"));
         assert!(bad(GuidanceConfig { max_step: Some(-0.03), ..GuidanceConfig::all() }).starts_with("max_step:"));
         assert!(bad(GuidanceConfig { real_sizes: Some(f64::NAN), ..GuidanceConfig::all() }).starts_with("real_sizes:"));
+        assert!(
+            bad(GuidanceConfig { fold_anchored: Some(1.5), ..GuidanceConfig::all() }).starts_with("fold_anchored:")
+        );
+        assert!(
+            bad(GuidanceConfig { fold_anchored: Some(f64::NAN), ..GuidanceConfig::all() })
+                .starts_with("fold_anchored:")
+        );
         assert!(bad(GuidanceConfig { iterations: 1_000_000_000, ..GuidanceConfig::all() }).starts_with("iterations:"));
         assert!(
             bad(GuidanceConfig { anchored_mobility: 2.0, ..GuidanceConfig::all() }).starts_with("anchored_mobility:")
@@ -1076,6 +1131,33 @@ mod batch_tests {
         assert!(out[0] > tok[0] + 0.01, "the piece moved out of the wall: {} → {}", tok[0], out[0]);
         assert_eq!(out[..CLASS_OFFSET], out[dim..dim + CLASS_OFFSET], "the copy took the piece's place");
         assert_eq!(tokens::decode(&out, masks.window.center, 2.6, &bounds, &cfg).len(), 1, "still one piece");
+    }
+
+    #[test]
+    fn overlapping_pieces_in_anchored_slots_fold_into_the_larger() {
+        use Category::*;
+        // Slots 0–2 anchored: an armchair (0.8 × 0.8) inside a loveseat (1.6 × 0.8), an armchair
+        // 2 m away; slot 3 (free) a stool inside the loveseat.
+        let piece = |c, x: f64, w: f64| Object::standing("o", c, [x, 0.0], [w, 0.8, 0.8]);
+        let mut decoded = vec![
+            (vec![0], piece(Armchair, 0.4, 0.8)),
+            (vec![1], piece(LoveseatSofa, 0.6, 1.6)),
+            (vec![2], piece(Armchair, 3.0, 0.8)),
+            (vec![3], piece(Stool, 0.8, 0.4)),
+        ];
+        let dim = 3;
+        let mut tokens: Vec<f32> = (0..4 * dim).map(|v| v as f32).collect();
+        fold_anchored(&mut decoded, &mut tokens, 3, 0.25, dim);
+        let kept: Vec<(Vec<usize>, Category)> = decoded.iter().map(|(s, o)| (s.clone(), o.category)).collect();
+        assert_eq!(kept, vec![(vec![1, 0], LoveseatSofa), (vec![2], Armchair), (vec![3], Stool)]);
+        assert_eq!(tokens[..dim], tokens[dim..2 * dim], "slot 0 holds the loveseat's whole token");
+        assert_eq!(tokens[dim..2 * dim], [3.0, 4.0, 5.0]);
+        assert_eq!(tokens[2 * dim..], [6.0, 7.0, 8.0, 9.0, 10.0, 11.0], "the far and the free slots are untouched");
+        // Overlapping by less than the share (0.1 m of the armchair's 0.8): nothing folds.
+        let mut apart = vec![(vec![0], piece(Armchair, -0.5, 0.8)), (vec![1], piece(LoveseatSofa, 0.6, 1.6))];
+        let before = apart.clone();
+        fold_anchored(&mut apart, &mut tokens, 2, 0.25, dim);
+        assert_eq!(apart, before);
     }
 
     #[test]
