@@ -377,6 +377,8 @@ pub struct Footprint {
     pub area: f64,
     /// What a sitter or sleeper needs of the piece's height (J_s); `None` for a touch.
     pub support: Option<SupportNeed>,
+    /// The box's centre (x, y).
+    pub center: DVec2,
 }
 
 impl Footprint {
@@ -386,7 +388,7 @@ impl Footprint {
         let area = mask.count() as f64 * window.pixel_area();
         let support = matches!(b.action, Action::Sit | Action::Lie)
             .then(|| SupportNeed { at: b.obox.center.truncate(), height: b.obox.z_range().1 });
-        Footprint { mask, area, support }
+        Footprint { mask, area, support, center: b.obox.center.truncate() }
     }
 }
 
@@ -540,8 +542,11 @@ pub fn squareness(objects: &[GuidedObject], wall: f64) -> (f64, Vec<ObjectGradie
 }
 
 /// J_c: Σ over anchored objects of the soft area (m²) of their contact boxes' footprints that
-/// their own footprint leaves uncovered, with gradients. `boxes[i]` are the footprints of the
+/// their own footprint leaves uncovered, plus the distance (m) from each box's centre to the
+/// footprint when the centre is outside it, with gradients. `boxes[i]` are the footprints of the
 /// boxes object i serves (several for a sofa in several sitters' slots; none for a free piece).
+/// The soft area has a gradient only within a few pixels of the piece's edge; the distance pulls
+/// a piece towards a box it misses by more (a sofa centred on one of three sitters).
 pub fn contact_shortfall(
     objects: &[GuidedObject],
     boxes: &[Vec<&Footprint>],
@@ -556,9 +561,32 @@ pub fn contact_shortfall(
             for k in 0..7 {
                 g[k] -= cg[0][k];
             }
+            let (d, toward) = distance_outside(o, footprint.center);
+            total += d;
+            g[0] -= toward.x;
+            g[1] -= toward.y;
         }
     }
     (total, grads)
+}
+
+/// The distance (m) from `p` to the footprint of `o` (0 inside) and its unit direction from the
+/// footprint towards `p` (zero inside): moving the piece's centre that way shortens the distance
+/// at rate 1.
+fn distance_outside(o: &GuidedObject, p: DVec2) -> (f64, DVec2) {
+    let (c, s) = (o.yaw.cos(), o.yaw.sin());
+    let rel = p - o.center.truncate();
+    let local = DVec2::new(c * rel.x + s * rel.y, -s * rel.x + c * rel.y);
+    let excess = DVec2::new(
+        (local.x.abs() - o.size.x * 0.5).max(0.0) * local.x.signum(),
+        (local.y.abs() - o.size.y * 0.5).max(0.0) * local.y.signum(),
+    );
+    let d = excess.length();
+    if d <= 0.0 {
+        return (0.0, DVec2::ZERO);
+    }
+    let e = excess / d;
+    (d, DVec2::new(c * e.x - s * e.y, s * e.x + c * e.y))
 }
 
 /// The weighted J of one scene's objects and its gradient; `anchors[i]` are the contact boxes
@@ -999,13 +1027,26 @@ mod tests {
         let objs = [piece(1.5)];
         let (half, grads) = contact_shortfall(&objs, &[vec![&mask]], &w);
         assert!((half - 0.12).abs() < 0.01, "{half}");
+        // The gradient against a central difference, 5 cm further off (where the box's centre is
+        // outside the piece and both parts of J_c count).
         let h = 1e-4;
-        let shifted = |d: f64| contact_shortfall(&[piece(1.5 + d)], &[vec![&mask]], &w).0;
+        let shifted = |d: f64| contact_shortfall(&[piece(1.45 + d)], &[vec![&mask]], &w).0;
         let fd = (shifted(h) - shifted(-h)) / (2.0 * h);
-        assert!((fd - grads[0][0]).abs() < 1e-3 * (1.0 + fd.abs()), "fd {fd} analytic {}", grads[0][0]);
+        let analytic = contact_shortfall(&[piece(1.45)], &[vec![&mask]], &w).1[0][0];
+        assert!((fd - analytic).abs() < 1e-3 * (1.0 + fd.abs()), "fd {fd} analytic {analytic}");
         // Moving the piece towards the box (+x) uncovers less; a free piece costs nothing.
         assert!(grads[0][0] < -0.3);
         assert_eq!(contact_shortfall(&objs, &[vec![]], &w).0, 0.0);
+        // A metre away (the piece ends at x = 1.0, the box spans 1.7..2.3), the whole box is
+        // uncovered (its 0.24 m² as pixels) and the box's centre is 1 m off: J = area + 1, and the
+        // distance pulls the piece on at rate 1 where the soft area no longer does.
+        let far = [piece(0.5)];
+        let (j, grads) = contact_shortfall(&far, &[vec![&mask]], &w);
+        assert!((j - (mask.area + 1.0)).abs() < 1e-3 && (mask.area - 0.24).abs() < 0.02, "{j}");
+        assert!((grads[0][0] + 1.0).abs() < 1e-3 && grads[0][1].abs() < 1e-9, "{:?}", grads[0]);
+        // Turned a quarter, the piece's footprint is the same square: the same distance.
+        let turned = GuidedObject { yaw: std::f64::consts::FRAC_PI_2, ..far[0] };
+        assert!((contact_shortfall(&[turned], &[vec![&mask]], &w).0 - j).abs() < 1e-3);
     }
 
     #[test]
