@@ -574,9 +574,8 @@ pub fn contact_shortfall(
 /// footprint towards `p` (zero inside): moving the piece's centre that way shortens the distance
 /// at rate 1.
 fn distance_outside(o: &GuidedObject, p: DVec2) -> (f64, DVec2) {
-    let (c, s) = (o.yaw.cos(), o.yaw.sin());
-    let rel = p - o.center.truncate();
-    let local = DVec2::new(c * rel.x + s * rel.y, -s * rel.x + c * rel.y);
+    let b = o.obox();
+    let local = b.to_local(p.extend(b.center.z));
     let excess = DVec2::new(
         (local.x.abs() - o.size.x * 0.5).max(0.0) * local.x.signum(),
         (local.y.abs() - o.size.y * 0.5).max(0.0) * local.y.signum(),
@@ -585,8 +584,8 @@ fn distance_outside(o: &GuidedObject, p: DVec2) -> (f64, DVec2) {
     if d <= 0.0 {
         return (0.0, DVec2::ZERO);
     }
-    let e = excess / d;
-    (d, DVec2::new(c * e.x - s * e.y, s * e.x + c * e.y))
+    let (ax, ay) = b.axes();
+    (d, ax * (excess.x / d) + ay * (excess.y / d))
 }
 
 /// The weighted J of one scene's objects and its gradient; `anchors[i]` are the contact boxes
@@ -764,11 +763,13 @@ fn fold_anchored(decoded: &mut Vec<(Vec<usize>, Object)>, tokens: &mut [f32], an
     let footprint = |o: &Object| o.size[0] * o.size[1];
     let mut i = 0;
     while i < decoded.len() {
-        let partner = (i + 1..decoded.len()).find(|&j| {
-            is_anchored(&decoded[i].0)
-                && is_anchored(&decoded[j].0)
-                && Overlap::Smaller.of(&decoded[i].1.obox(), &decoded[j].1.obox()) > share
-        });
+        let partner = is_anchored(&decoded[i].0)
+            .then(|| {
+                let first = decoded[i].1.obox();
+                (i + 1..decoded.len())
+                    .find(|&j| is_anchored(&decoded[j].0) && Overlap::Smaller.of(&first, &decoded[j].1.obox()) > share)
+            })
+            .flatten();
         let Some(j) = partner else {
             i += 1;
             continue;
