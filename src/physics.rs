@@ -80,6 +80,29 @@ pub(crate) mod testing {
         }
     }
 
+    /// Passes the first `pass` scenes it is asked to check and fails the rest; sees no contacts.
+    #[derive(Debug, Default)]
+    pub struct PassFirst {
+        /// Scenes to pass.
+        pub pass: usize,
+        /// Scenes asked about so far.
+        pub asked: AtomicUsize,
+    }
+
+    impl Physics for PassFirst {
+        fn passes_check(&self, _: &Scene) -> bool {
+            self.asked.fetch_add(1, Ordering::SeqCst) < self.pass
+        }
+
+        fn exact_contacts(&self, _: &Scene, _: f64) -> Vec<EngineContact> {
+            Vec::new()
+        }
+
+        fn pushes(&self, _: &Scene, _: f64) -> Vec<(usize, DVec2)> {
+            Vec::new()
+        }
+    }
+
     impl Physics for FailFirst {
         fn passes_check(&self, scene: &Scene) -> bool {
             scene.humans.len() < self.min_humans || self.asked.fetch_add(1, Ordering::SeqCst) >= self.fail

@@ -65,11 +65,12 @@ pub fn run(args: &RepairArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus>
     if global.json {
         print_json(&reports)?;
     } else if global.quiet == 0 {
-        let moved = reports.iter().filter(|r| r.totals.settle.max_move > 1e-3).count();
+        let moved = reports.iter().filter(|r| r.totals.kept_as_given == 0 && r.totals.settle.max_move > 1e-3).count();
         let t: RepairTotals = reports.iter().map(|r| r.totals).sum();
         print_text(&format!(
             "{} scenes repaired into {}: {moved} changed, largest move {:.3} m; objects: {} resized, {} added, \
-             {} trimmed, {} widened, {} narrowed, {} left out, {} removed\n",
+             {} trimmed, {} widened, {} narrowed, {} left out, {} removed; {} passing layouts kept as given (repair \
+             made them fail)\n",
             reports.len(),
             out_dir.display(),
             t.settle.max_move,
@@ -79,7 +80,8 @@ pub fn run(args: &RepairArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus>
             t.widened,
             t.narrowed,
             t.left_out,
-            t.removed
+            t.removed,
+            t.kept_as_given
         ))?;
     }
     Ok(ExitStatus::Success)

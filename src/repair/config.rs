@@ -103,6 +103,9 @@ pub struct RepairConfig {
     pub off_bodies: OffBodiesConfig,
     /// `left_out`'s settings.
     pub left_out: LeftOutConfig,
+    /// Whether a layout that passed `shade-sim check` before repair and fails it after is given
+    /// back as it was (default true): repair then never turns a passing layout into a failing one.
+    pub keep_passing: bool,
 }
 
 impl Default for RepairConfig {
@@ -121,6 +124,7 @@ impl Default for RepairConfig {
             wide_seats: WideSeatsConfig::default(),
             off_bodies: OffBodiesConfig::default(),
             left_out: LeftOutConfig::default(),
+            keep_passing: true,
         }
     }
 }

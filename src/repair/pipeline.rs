@@ -158,17 +158,20 @@ impl SettleReport {
 pub struct RepairReport {
     /// One report per step run.
     pub steps: Vec<StepReport>,
+    /// Whether the steps' result failed `check` where the layout as given passed it, and the
+    /// layout was given back unchanged ([`RepairConfig::keep_passing`]).
+    pub kept_as_given: bool,
 }
 
 impl RepairReport {
-    /// Pieces changed by all steps.
+    /// Pieces changed by all steps (none when the layout was kept as given).
     pub fn changed(&self) -> usize {
-        self.steps.iter().map(StepReport::changed).sum()
+        if self.kept_as_given { 0 } else { self.steps.iter().map(StepReport::changed).sum() }
     }
 
     /// Every step's counts summed by kind.
     pub fn totals(&self) -> RepairTotals {
-        let mut t = RepairTotals::default();
+        let mut t = RepairTotals { kept_as_given: usize::from(self.kept_as_given), ..RepairTotals::default() };
         for s in &self.steps {
             match *s {
                 StepReport::Settle(r) => t.settle = t.settle.plus(&r),
@@ -208,6 +211,8 @@ pub struct RepairTotals {
     pub left_out: usize,
     /// Pieces removed from overlaps.
     pub removed: usize,
+    /// Layouts given back as they were, which passed `check` before the steps and failed after.
+    pub kept_as_given: usize,
 }
 
 impl std::iter::Sum for RepairTotals {
@@ -222,6 +227,7 @@ impl std::iter::Sum for RepairTotals {
             pushed: a.pushed + t.pushed,
             left_out: a.left_out + t.left_out,
             removed: a.removed + t.removed,
+            kept_as_given: a.kept_as_given + t.kept_as_given,
         })
     }
 }
@@ -242,10 +248,19 @@ impl Pipeline {
         self.steps.iter().map(|s| s.name()).collect()
     }
 
-    /// Runs every step on `scene` in order.
+    /// Runs every step on `scene` in order; with `config.keep_passing`, a scene that passed the
+    /// check before and fails it after gets its objects back as they were.
     pub fn run(&self, scene: &mut Scene, config: &RepairConfig, physics: &dyn Physics) -> RepairReport {
+        let given = (config.keep_passing && physics.passes_check(scene)).then(|| scene.objects.clone());
         let mut work = Workspace::new(scene, config, physics);
         let steps = self.steps.iter().map(|s| s.run(scene, &mut work, config)).collect();
-        RepairReport { steps }
+        let kept_as_given = match given {
+            Some(objects) if !physics.passes_check(scene) => {
+                scene.objects = objects;
+                true
+            }
+            _ => false,
+        };
+        RepairReport { steps, kept_as_given }
     }
 }

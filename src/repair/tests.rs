@@ -67,6 +67,30 @@ fn shifted_furniture_comes_back_under_its_people_inside_the_walls_and_apart() {
 }
 
 #[test]
+fn a_passing_layout_that_repair_would_break_is_given_back_as_it_was() {
+    use crate::physics::testing::PassFirst;
+    let mut given = generate_room(RoomType::Dining, 4, 3, false).scene;
+    for o in &mut given.objects {
+        o.center[0] -= 0.12;
+        o.center[1] -= 0.12;
+    }
+    // A judge that passes the layout as given and fails what the steps made of it.
+    let mut scene = given.clone();
+    let r = repair_scene(&mut scene, &RepairConfig::default(), &PassFirst { pass: 1, ..PassFirst::default() });
+    assert!(r.kept_as_given, "{r:?}");
+    assert_eq!(scene.objects, given.objects);
+    assert_eq!((r.changed(), r.totals().kept_as_given), (0, 1));
+    // The steps' result stays where it passes too, where the given layout failed, or without the guard.
+    for (pass, keep_passing) in [(2, true), (0, true), (1, false)] {
+        let mut scene = given.clone();
+        let config = RepairConfig { keep_passing, ..RepairConfig::default() };
+        let r = repair_scene(&mut scene, &config, &PassFirst { pass, ..PassFirst::default() });
+        assert!(!r.kept_as_given && r.changed() > 0, "{pass} {keep_passing}: {r:?}");
+        assert_ne!(scene.objects, given.objects, "{pass} {keep_passing}");
+    }
+}
+
+#[test]
 fn every_piece_ends_square_to_the_walls() {
     let mut scene = generate_room(RoomType::Bedroom, 4, 1, false).scene;
     for (k, o) in scene.objects.iter_mut().enumerate() {
