@@ -150,6 +150,34 @@ pub enum ProblemKind {
         /// Index of the earlier span.
         other: usize,
     },
+    /// A finite number outside the physical bounds of the format ([`super::SceneLimits`]).
+    OutOfRange {
+        /// The value found.
+        value: f64,
+        /// Smallest allowed.
+        min: f64,
+        /// Largest allowed.
+        max: f64,
+    },
+    /// More of something than the format allows ([`super::SceneLimits`], the room type's slots).
+    TooMany {
+        /// What is counted ("vertices", "objects", …).
+        what: &'static str,
+        /// How many there are.
+        count: usize,
+        /// The most allowed.
+        max: usize,
+    },
+}
+
+/// A number as `Display` writes it, but in exponent form beyond a million (1e308 is one short word,
+/// not 309 digits).
+struct Short(f64);
+
+impl fmt::Display for Short {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.0.abs() >= 1e6 { write!(f, "{:e}", self.0) } else { write!(f, "{}", self.0) }
+    }
 }
 
 impl fmt::Display for Problem {
@@ -189,6 +217,10 @@ impl fmt::Display for ProblemKind {
                 write!(f, "action range [{start}, {end}) is empty or outside the {frames} frames")
             }
             OverlappingActions { other } => write!(f, "action range overlaps actions[{other}]"),
+            OutOfRange { value, min, max } => {
+                write!(f, "{} is outside the allowed range {min} to {max}", Short(*value))
+            }
+            TooMany { what, count, max } => write!(f, "{count} {what}, at most {max} allowed"),
         }
     }
 }

@@ -27,12 +27,16 @@ impl Scene {
     /// As [`Scene::load`], without the I/O case.
     pub fn from_json(text: &str, origin: &Path) -> Result<Scene, SceneError> {
         let de = &mut serde_json::Deserializer::from_str(text);
-        let scene: Scene = serde_path_to_error::deserialize(de).map_err(|e| {
-            let path = e.path().to_string();
-            let inner = e.into_inner();
+        let parse_error = |path: String, inner: serde_json::Error| {
             let message = strip_position(&inner.to_string());
             SceneError::Parse { file: origin.to_path_buf(), path, message, line: inner.line(), column: inner.column() }
+        };
+        let scene: Scene = serde_path_to_error::deserialize(&mut *de).map_err(|e| {
+            let path = e.path().to_string();
+            parse_error(path, e.into_inner())
         })?;
+        // Only whitespace may follow the document: a scene with bytes after it is not one scene.
+        de.end().map_err(|e| parse_error(String::new(), e))?;
         let problems = validate(&scene);
         if problems.is_empty() { Ok(scene) } else { Err(SceneError::Invalid { file: origin.to_path_buf(), problems }) }
     }

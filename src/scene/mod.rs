@@ -9,6 +9,7 @@ mod error;
 mod floor_plan;
 mod human;
 mod io;
+mod limits;
 mod object;
 #[allow(clippy::module_inception)]
 mod scene;
@@ -20,6 +21,7 @@ pub use error::{Problem, ProblemKind, SceneError};
 pub use floor_plan::FloorPlan;
 pub use human::{ActionSpan, Bone, Human, JOINT_NAMES, Skeleton};
 pub use io::write_atomic;
+pub use limits::SceneLimits;
 pub use object::Object;
 pub use scene::{FORMAT, Scene};
 pub use summary::{FloorSummary, HumanSummary, SceneSummary};

@@ -234,3 +234,110 @@ fn a_bad_repair_config_names_its_file_and_field() {
         assert!(!out_dir.exists(), "nothing written for a bad config");
     }
 }
+
+/// Runs `args` (with `{}` replaced by the scene's path and `{out}` by a fresh output path) and
+/// returns the exit code and stderr.
+fn run_on(file: &std::path::Path, out_dir: &std::path::Path, args: &[&str]) -> (Option<i32>, String) {
+    let out_path = out_dir.join("out");
+    let args: Vec<String> = args
+        .iter()
+        .map(|a| {
+            a.replace("{}", file.to_str().unwrap())
+                .replace("{dir}", file.parent().unwrap().to_str().unwrap())
+                .replace("{out}", out_path.to_str().unwrap())
+        })
+        .collect();
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let out = shade_sim(&args);
+    (out.status.code(), stderr(&out))
+}
+
+#[test]
+fn huge_but_finite_numbers_are_rejected_by_every_command_with_the_same_line() {
+    let cases: [(fn(&mut Value), &str); 8] = [
+        (|v| v["objects"][0]["size"][0] = json!(1e20), "objects[0].size[0]: 1e20 is outside the allowed range 0 to 10"),
+        (|v| v["objects"][0]["center"][1] = json!(1e20), "objects[0].center[1]: "),
+        (
+            |v| v["humans"][0]["frames"][1][4][0] = json!(1e308),
+            "humans[0].frames[1][4][0]: 1e308 is outside the allowed range -2 to 6",
+        ),
+        (|v| v["floor_plan"]["polygon"][2] = json!([4e6, 3.5]), "floor_plan.polygon[2][0]: "),
+        (|v| v["floor_plan"]["height"] = json!(1e4), "floor_plan.height: 10000 is outside"),
+        (|v| v["humans"][0]["fps"] = json!(1e9), "humans[0].fps: "),
+        (|v| v["humans"][0]["skeleton"]["bones"][0]["radius"] = json!(5), "bones[0].radius: 5 is outside"),
+        (|v| v["objects"][0]["yaw"] = json!(1e12), "objects[0].yaw: "),
+    ];
+    for (edit, expect) in cases {
+        let mut v = valid();
+        edit(&mut v);
+        rejects(|w| *w = v.clone(), expect);
+    }
+    // Every command that reads the scene rejects it before any work, with the same line.
+    let dir = tempfile::tempdir().unwrap();
+    let mut v = valid();
+    v["objects"][0]["size"][0] = json!(1e20);
+    let scenes = dir.path().join("scenes");
+    std::fs::create_dir(&scenes).unwrap();
+    let file = write_file(&scenes, "scene.json", &v.to_string());
+    let expected =
+        format!("error: {}: objects[0].size[0]: 1e20 is outside the allowed range 0 to 10\n", file.display());
+    for args in [
+        &["inspect", "{}"][..],
+        &["check", "{}"],
+        &["repair", "{}", "--out", "{out}"],
+        &["export", "{}", "--format", "mjcf", "--out", "{out}"],
+        &["conditions", "{}", "--out", "{out}"],
+        &["eval", "--pred", "{dir}", "--ref", "{dir}", "--no-physics"],
+    ] {
+        let (code, err) = run_on(&file, dir.path(), args);
+        assert_eq!((code, err.as_str()), (Some(2), expected.as_str()), "{args:?}");
+        assert!(!dir.path().join("out").exists(), "{args:?} wrote nothing");
+    }
+}
+
+#[test]
+fn object_counts_beyond_the_room_type_s_slots_are_rejected() {
+    rejects(
+        |v| {
+            let o = v["objects"][0].clone();
+            let objects: Vec<Value> = (0..13)
+                .map(|i| {
+                    let mut o = o.clone();
+                    o["id"] = json!(format!("o{i}"));
+                    o
+                })
+                .collect();
+            v["objects"] = json!(objects);
+        },
+        "objects: 13 objects, at most 12 allowed",
+    );
+}
+
+#[test]
+fn floor_plans_beyond_the_vertex_limit_or_a_room_s_size_are_rejected() {
+    // 300 vertices on a circle: a valid simple polygon, past the 256-vertex limit.
+    let circle: Vec<Value> = (0..300)
+        .map(|i| {
+            let a = i as f64 / 300.0 * std::f64::consts::TAU;
+            json!([2.0 + 2.0 * a.cos(), 2.0 + 2.0 * a.sin()])
+        })
+        .collect();
+    rejects(
+        |v| v["floor_plan"]["polygon"] = json!(circle),
+        "floor_plan.polygon: 300 floor polygon vertices, at most 256 allowed",
+    );
+    rejects(
+        |v| v["floor_plan"]["polygon"] = json!([[0, 0], [400, 0], [400, 3.5], [0, 3.5]]),
+        "floor_plan.polygon: 400 is outside the allowed range 0 to 50",
+    );
+}
+
+#[test]
+fn trailing_bytes_after_the_scene_are_rejected() {
+    rejects_text(&format!("{}\0xyz", valid()), ": trailing characters");
+    rejects_text(&format!("{}{{}}", valid()), ": trailing characters");
+    // Whitespace after the document is fine.
+    let dir = tempfile::tempdir().unwrap();
+    let file = write_file(dir.path(), "scene.json", &format!("{}\n\n  \n", valid()));
+    assert_eq!(shade_sim(&["inspect", file.to_str().unwrap()]).status.code(), Some(0));
+}
