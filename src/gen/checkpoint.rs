@@ -65,6 +65,10 @@ pub struct CheckpointMeta {
     pub categories: Vec<Category>,
     /// How it was trained.
     pub training: TrainingInfo,
+    /// FNV-1a hash of `model.safetensors` (hex), checked on load; absent in folders written before
+    /// it existed, which load unchecked.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub weights_hash: Option<String>,
 }
 
 /// A loaded model: metadata and the denoiser with its EMA weights.
@@ -96,9 +100,30 @@ impl Checkpoint {
         Self::from_parts(meta, &bytes, &weights)
     }
 
-    /// A model from its `config.json` and weight bytes; `origin` names them in errors.
+    /// A model from its `config.json` and weight bytes; `origin` names them in errors. The bytes
+    /// must match the config's hash (when it has one), and every tensor must be f32 and finite.
     pub fn from_parts(meta: CheckpointMeta, weights: &[u8], origin: &Path) -> Result<Checkpoint, GenError> {
+        if let Some(expected) = &meta.weights_hash
+            && fnv1a_hex(weights) != *expected
+        {
+            return Err(GenError::checkpoint(
+                origin,
+                format!("does not match the weights_hash {expected} in config.json (corrupt or replaced)"),
+            ));
+        }
         let tensors = read_tensors(weights, origin)?;
+        let mut names: Vec<&String> = tensors.keys().collect();
+        names.sort();
+        for name in names {
+            let t = &tensors[name];
+            if t.dtype() != candle_core::DType::F32 {
+                return Err(GenError::checkpoint(origin, format!("tensor {name} is {:?}, not f32", t.dtype())));
+            }
+            let values = t.flatten_all().and_then(|v| v.to_vec1::<f32>()).map_err(|e| at(e.into(), origin))?;
+            if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+                return Err(GenError::checkpoint(origin, format!("tensor {name} has a non-finite value at {k}")));
+            }
+        }
         let denoiser = Denoiser::new(&meta.model, &mut Params::loaded(tensors)).map_err(|e| at(e, origin))?;
         Ok(Checkpoint { meta, denoiser })
     }
@@ -129,11 +154,13 @@ pub fn read_tensors(bytes: &[u8], origin: &Path) -> Result<HashMap<String, Tenso
         .map_err(|e| GenError::checkpoint(origin, format!("not a readable safetensors file: {e}")))
 }
 
-/// Writes `tensors` as safetensors to `path`, atomically.
-pub fn write_tensors(tensors: &BTreeMap<String, Tensor>, path: &Path) -> Result<(), GenError> {
+/// Writes `tensors` as safetensors to `path`, atomically; returns the FNV-1a hash of the bytes
+/// written.
+pub fn write_tensors(tensors: &BTreeMap<String, Tensor>, path: &Path) -> Result<String, GenError> {
     let bytes = safetensors::serialize(tensors.iter().map(|(k, v)| (k.as_str(), v)), None)
         .map_err(|e| GenError::checkpoint(path, format!("cannot serialise: {e}")))?;
-    write_atomic(path, &bytes).map_err(|e| GenError::io(path, e))
+    write_atomic(path, &bytes).map_err(|e| GenError::io(path, e))?;
+    Ok(fnv1a_hex(&bytes))
 }
 
 /// Writes `value` as pretty JSON to `path`, atomically.

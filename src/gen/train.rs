@@ -288,6 +288,7 @@ pub fn train(
                     bounds: bounds.clone(),
                     categories: cfg.room_type.categories().to_vec(),
                     training: info(step, seconds, val_loss),
+                    weights_hash: None,
                 };
                 let state = StateMeta { step, adam_steps: adam.steps, seconds, val_loss, data_hash: data_hash.clone() };
                 save(&opts.out, &meta, &state, &layout, &params, &adam, &ema)?;
@@ -363,8 +364,8 @@ fn save(
     // checkpoint at worst.
     write_tensors(&tensors, &dir.join(STATE_FILE))?;
     write_json(state, &dir.join(STATE_META_FILE))?;
-    write_tensors(&ema, &dir.join(WEIGHTS_FILE))?;
-    write_json(meta, &dir.join(CONFIG_FILE))
+    let weights_hash = write_tensors(&ema, &dir.join(WEIGHTS_FILE))?;
+    write_json(&CheckpointMeta { weights_hash: Some(weights_hash), ..meta.clone() }, &dir.join(CONFIG_FILE))
 }
 
 fn restore(

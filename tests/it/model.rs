@@ -303,13 +303,18 @@ fn bad_and_mismatched_checkpoints_give_one_error_line() {
 
     let corrupt = dir.path().join("corrupt");
     std::fs::create_dir(&corrupt).unwrap();
-    std::fs::copy(model.join("config.json"), corrupt.join("config.json")).unwrap();
+    // A config without the weights' hash, so that the weights themselves are read.
+    let config = std::fs::read_to_string(model.join("config.json")).unwrap();
+    assert!(config.contains("\"weights_hash\""), "training records the weights' hash");
+    let mut unhashed: serde_json::Value = serde_json::from_str(&config).unwrap();
+    unhashed.as_object_mut().unwrap().remove("weights_hash");
+    let unhashed = serde_json::to_string_pretty(&unhashed).unwrap();
+    std::fs::write(corrupt.join("config.json"), &unhashed).unwrap();
     std::fs::write(corrupt.join("model.safetensors"), b"not tensors at all").unwrap();
     expect_error(run(&corrupt, "bedroom_rect.json"), "model.safetensors: not a readable safetensors file");
 
     // Weights of a different shape (the config says d_model 48).
-    let text =
-        std::fs::read_to_string(model.join("config.json")).unwrap().replace("\"d_model\": 32", "\"d_model\": 48");
+    let text = unhashed.replace("\"d_model\": 32", "\"d_model\": 48");
     std::fs::write(corrupt.join("config.json"), text).unwrap();
     std::fs::copy(model.join("model.safetensors"), corrupt.join("model.safetensors")).unwrap();
     expect_error(run(&corrupt, "bedroom_rect.json"), "model.safetensors: ");
@@ -335,6 +340,24 @@ fn bad_and_mismatched_checkpoints_give_one_error_line() {
         std::fs::write(&file, config).unwrap();
         expect_error(guided(&["--guidance-config", file.to_str().unwrap()]), &format!("{}: {field}: ", file.display()));
     }
+
+    // Checked on load: a weight file that does not match config.json's hash, weights that are NaN
+    // (here under a config without a hash), and a chain too long to allocate (it aborted on 8 TB).
+    let mut weights = std::fs::read(model.join("model.safetensors")).unwrap();
+    let n = weights.len();
+    weights[n - 4..].copy_from_slice(&f32::NAN.to_le_bytes());
+    std::fs::write(corrupt.join("model.safetensors"), &weights).unwrap();
+    std::fs::write(corrupt.join("config.json"), &config).unwrap();
+    expect_error(run(&corrupt, "bedroom_rect.json"), "model.safetensors: does not match the weights_hash");
+    std::fs::write(corrupt.join("config.json"), &unhashed).unwrap();
+    expect_error(run(&corrupt, "bedroom_rect.json"), "model.safetensors: tensor ");
+    expect_error(run(&corrupt, "bedroom_rect.json"), "has a non-finite value");
+    let long = config.replace("\"diffusion_steps\": 200", "\"diffusion_steps\": 1000000000000");
+    std::fs::write(corrupt.join("config.json"), long).unwrap();
+    expect_error(
+        run(&corrupt, "bedroom_rect.json"),
+        "config.json: bad model config: diffusion_steps 1000000000000 is outside",
+    );
 
     std::fs::write(corrupt.join("config.json"), "{ \"format\": ").unwrap();
     expect_error(run(&corrupt, "bedroom_rect.json"), "config.json: not a model config");
