@@ -8,7 +8,15 @@ fn main() -> ExitCode {
     shade_sim::tune_allocator_for_tensors();
     let cli = cli::Cli::parse();
     cli::init_logging(&cli.global);
-    match cli::run(cli) {
+    cli::quiet_panics();
+    // Batch commands name the input a panic came from; this catches any other.
+    let outcome = std::panic::catch_unwind(|| cli::run(cli)).unwrap_or_else(|payload| {
+        Err(anyhow::anyhow!(
+            "internal error: {} (a bug: please report it with the input)",
+            cli::panic_message(payload.as_ref())
+        ))
+    });
+    match outcome {
         Ok(status) => status.into(),
         Err(e) => {
             eprintln!("error: {}", cli::one_line(&e));

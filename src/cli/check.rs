@@ -45,15 +45,16 @@ pub fn run(args: &CheckArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     let bar = super::progress::bar(global, files.len() as u64, "check");
     // Load everything first: bad input fails before any checking.
     let scenes: Vec<Scene> = files.iter().map(Scene::load).collect::<Result<_, _>>()?;
-    let reports: Vec<FileReport> = files
+    let reports: Vec<anyhow::Result<FileReport>> = files
         .par_iter()
         .zip(&scenes)
         .map(|(f, s)| {
-            let report = check_scene(s, &cfg);
+            let report = super::guarded(f, || Ok(check_scene(s, &cfg)));
             bar.inc(1);
-            FileReport { file: f.display().to_string(), report }
+            Ok(FileReport { file: f.display().to_string(), report: report? })
         })
         .collect();
+    let reports = super::all_or_first_error(reports)?;
     bar.finish_and_clear();
     let dirty = reports.iter().filter(|r| !r.report.is_clean()).count();
     if global.json {

@@ -78,8 +78,14 @@ fn load_all(dir: &Path) -> anyhow::Result<Vec<Scene>> {
     Ok(scene_files(dir)?.iter().map(Scene::load).collect::<Result<_, _>>()?)
 }
 
-fn physics(scenes: &[Scene]) -> PhysicsRates {
-    let reports: Vec<_> = scenes.par_iter().map(|s| check_scene(s, &CheckConfig::default())).collect();
+fn physics(dir: &Path, scenes: &[Scene]) -> anyhow::Result<PhysicsRates> {
+    let files = scene_files(dir)?;
+    let reports: Vec<_> = scenes
+        .par_iter()
+        .zip(&files)
+        .map(|(s, f)| super::guarded(f, || Ok(check_scene(s, &CheckConfig::default()))))
+        .collect();
+    let reports = super::all_or_first_error(reports)?;
     let contact: usize = scenes
         .iter()
         .map(|s| {
@@ -91,7 +97,7 @@ fn physics(scenes: &[Scene]) -> PhysicsRates {
         .sum();
     let objects: usize = scenes.iter().map(|s| s.objects.len()).sum();
     let rate = |a: usize, b: usize| if b == 0 { 0.0 } else { a as f64 / b as f64 };
-    PhysicsRates {
+    Ok(PhysicsRates {
         penetrating_scenes: rate(
             reports.iter().filter(|r| r.count(ViolationKind::Penetration) > 0).count(),
             scenes.len(),
@@ -99,7 +105,7 @@ fn physics(scenes: &[Scene]) -> PhysicsRates {
         unsupported_humans: rate(reports.iter().map(|r| r.count(ViolationKind::Unsupported)).sum(), contact),
         unstable_objects: rate(reports.iter().map(|r| r.count(ViolationKind::Unstable)).sum(), objects),
         violating_scenes: rate(reports.iter().filter(|r| !r.is_clean()).count(), scenes.len()),
-    }
+    })
 }
 
 pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
@@ -128,7 +134,7 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
         };
         let mut row = evaluate(&name, &scenes, room, &freq);
         if !args.no_physics {
-            row.physics = Some(physics(&scenes));
+            row.physics = Some(physics(dir, &scenes)?);
         }
         row.counts = Some(count_report(&scenes, &counts, &seen));
         row.sizes = Some(size_report(&scenes));

@@ -10,6 +10,7 @@ mod demo;
 mod eval;
 mod export;
 mod generate;
+mod guard;
 mod import;
 mod inspect;
 mod output;
@@ -152,6 +153,8 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
         other => other,
     }
 }
+
+pub use guard::{all_or_first_error, guarded, panic_message, quiet_panics};
 
 /// An error chain on one line: `outer: inner: innermost`, newlines folded.
 pub fn one_line(e: &anyhow::Error) -> String {

@@ -52,16 +52,18 @@ pub fn run(args: &RepairArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus>
     // Everything is read and validated before anything is written.
     let scenes: Vec<Scene> = files.iter().map(Scene::load).collect::<Result<_, _>>()?;
     std::fs::create_dir_all(out_dir).with_context(|| format!("{}: cannot create folder", out_dir.display()))?;
-    let reports: Vec<FileReport> = files
+    // Every input is repaired and written (atomically) before the first failure is reported.
+    let reports: Vec<anyhow::Result<FileReport>> = files
         .par_iter()
         .zip(scenes)
         .map(|(file, mut scene)| -> anyhow::Result<FileReport> {
-            let r = repair_scene(&mut scene, &config, &SimPhysics);
+            let r = super::guarded(file, || Ok(repair_scene(&mut scene, &config, &SimPhysics)))?;
             let out = out_dir.join(file.file_name().context("a scene file has a name")?);
             scene.save(&out)?;
             Ok(FileReport { file: out.display().to_string(), totals: r.totals(), steps: r.steps })
         })
-        .collect::<anyhow::Result<_>>()?;
+        .collect();
+    let reports = super::all_or_first_error(reports)?;
     if global.json {
         print_json(&reports)?;
     } else if global.quiet == 0 {
