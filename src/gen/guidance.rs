@@ -111,7 +111,7 @@ pub struct GuidanceConfig {
 impl GuidanceConfig {
     /// All three spatial terms with the default settings, chosen on the val splits
     /// (docs/RESULTS.md, "Guidance that converges", "Bodies and support" and "Bones, not surface
-    /// points"): J_b weighted 4, J_o
+    /// points", and "J_b weighted 8"): J_b weighted 8, J_o
     /// as the share of the smaller piece, J_c 4 holding the pieces under people (which otherwise
     /// move like any piece), J_p and J_s 1 keeping them out of the bodies and up against them, and
     /// J_q 1 turning pieces square to the walls, and in each of the last 20 steps up to 128 gradient
@@ -120,7 +120,7 @@ impl GuidanceConfig {
     pub fn all() -> GuidanceConfig {
         GuidanceConfig {
             motion: 1.0,
-            bound: 4.0,
+            bound: 8.0,
             object: 1.0,
             overlap: Overlap::Smaller,
             max_step: Some(0.03),
