@@ -54,6 +54,14 @@ struct Report {
 
 pub fn run(args: &ExportArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     let scene = Scene::load(&args.scene)?;
+    let motion = (args.format == Format::Robosuite).then(|| motion_path(&args.out));
+    for out in std::iter::once(&args.out).chain(&motion) {
+        anyhow::ensure!(
+            !same_file(out, &args.scene),
+            "{}: is the scene being exported; choose another --out",
+            out.display()
+        );
+    }
     let (bytes, validation) = match args.format {
         Format::Mjcf | Format::Robosuite => {
             let robosuite = args.format == Format::Robosuite;
@@ -94,6 +102,14 @@ pub fn run(args: &ExportArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus>
 }
 
 /// `room.xml` → `room.motion.json`.
+/// Whether `a` and `b` name one existing file (through links and relative paths).
+fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    }
+}
+
 fn motion_path(out: &std::path::Path) -> PathBuf {
     out.with_extension("motion.json")
 }

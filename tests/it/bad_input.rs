@@ -341,3 +341,18 @@ fn trailing_bytes_after_the_scene_are_rejected() {
     let file = write_file(dir.path(), "scene.json", &format!("{}\n\n  \n", valid()));
     assert_eq!(shade_sim(&["inspect", file.to_str().unwrap()]).status.code(), Some(0));
 }
+
+#[test]
+fn export_onto_its_own_input_is_refused_and_the_scene_kept() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = valid().to_string();
+    let file = write_file(dir.path(), "scene.json", &text);
+    let same = dir.path().join(".").join("scene.json");
+    for format in ["mjcf", "png", "glb"] {
+        let out = shade_sim(&["export", file.to_str().unwrap(), "--format", format, "--out", same.to_str().unwrap()]);
+        assert_eq!(out.status.code(), Some(2), "{format}");
+        let err = stderr(&out);
+        assert_eq!(err, format!("error: {}: is the scene being exported; choose another --out\n", same.display()));
+        assert_eq!(std::fs::read_to_string(&file).unwrap(), text, "the scene is untouched");
+    }
+}
