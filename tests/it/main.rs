@@ -13,6 +13,7 @@ mod layers;
 mod model;
 mod scene_io;
 mod sim;
+mod smoke_fuzz;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
