@@ -29,9 +29,8 @@ impl RoomBounds {
         }
         let mut b = RoomBounds { min: [f64::INFINITY; 2], max: [f64::NEG_INFINITY; 2], height: plan.height.max(0.0) };
         for p in &plan.polygon {
-            for k in 0..2 {
-                b.min[k] = b.min[k].min(p[k]);
-                b.max[k] = b.max[k].max(p[k]);
+            for ((lo, hi), &v) in b.min.iter_mut().zip(&mut b.max).zip(p) {
+                (*lo, *hi) = (lo.min(v), hi.max(v));
             }
         }
         Some(b)

@@ -254,7 +254,8 @@ fn run_on(file: &std::path::Path, out_dir: &std::path::Path, args: &[&str]) -> (
 
 #[test]
 fn huge_but_finite_numbers_are_rejected_by_every_command_with_the_same_line() {
-    let cases: [(fn(&mut Value), &str); 8] = [
+    type Edit = fn(&mut Value);
+    let cases: [(Edit, &str); 8] = [
         (|v| v["objects"][0]["size"][0] = json!(1e20), "objects[0].size[0]: 1e20 is outside the allowed range 0 to 10"),
         (|v| v["objects"][0]["center"][1] = json!(1e20), "objects[0].center[1]: "),
         (
