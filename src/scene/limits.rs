@@ -53,12 +53,12 @@ impl SceneLimits {
         max_object_size: 10.0,
         object_margin: 5.0,
         max_yaw: 100.0,
-        max_humans: 64,
+        max_humans: 32,
         max_joints: 128,
         max_bones: 256,
         max_bone_radius: 0.5,
         max_fps: 1_000.0,
-        max_total_frames: 200_000,
+        max_total_frames: 50_000,
         joint_margin: 2.0,
     };
 }
