@@ -357,3 +357,33 @@ fn export_onto_its_own_input_is_refused_and_the_scene_kept() {
         assert_eq!(std::fs::read_to_string(&file).unwrap(), text, "the scene is untouched");
     }
 }
+
+#[test]
+fn an_error_names_the_input_not_the_output_and_batches_do_not_stop_half_way() {
+    // A folder with a good scene and one whose size is 1e308 (it panicked inside parry half-way
+    // through a batch, after the good one was written, and `polish` named its own output file).
+    let dir = tempfile::tempdir().unwrap();
+    let inputs = dir.path().join("in");
+    std::fs::create_dir_all(&inputs).unwrap();
+    write_file(&inputs, "a.json", &valid().to_string());
+    let mut v = valid();
+    v["humans"] = json!([]);
+    v["objects"][0]["size"][1] = json!(1e308);
+    let bad = write_file(&inputs, "b.json", &v.to_string());
+    let out_dir = dir.path().join("out");
+    for args in [
+        vec!["repair", inputs.to_str().unwrap(), "--out", out_dir.to_str().unwrap()],
+        vec!["check", inputs.to_str().unwrap()],
+        vec!["generate", "--input", inputs.to_str().unwrap(), "--out", out_dir.to_str().unwrap()],
+    ] {
+        let out = shade_sim(&args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(
+            err,
+            format!("error: {}: objects[0].size[1]: 1e308 is outside the allowed range 0 to 10\n", bad.display()),
+            "{args:?}"
+        );
+        assert!(!out_dir.exists(), "{args:?}: nothing written");
+    }
+}
