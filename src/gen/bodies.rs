@@ -30,6 +30,11 @@ pub const SUPPORT_TOLERANCE: f64 = 0.02;
 /// A human's frames are sampled wherever some joint has moved this far (m) since the last sampled
 /// frame (and at the middle of each contact span).
 const STRIDE: f64 = 0.1;
+/// Most frames of all humans together whose balls J_p tests: beyond, every human's sampled frames
+/// are thinned evenly (the contact spans' middles kept). The calibrated test rooms and hand-built
+/// inputs sample at most 276, so this only bounds the cost of the largest inputs validation accepts
+/// (32 people, 50,000 frames: about 10,000 sampled, and sampling took over 10 minutes).
+const MAX_SAMPLED_FRAMES: usize = 512;
 /// How far (m) a part may move under the central differences' steps (1 mm of size or centre, a
 /// milliradian of yaw at up to 3 m from the centre).
 const DIFFERENCE_MARGIN: f64 = 0.005;
@@ -58,8 +63,13 @@ impl BodyBalls {
     pub fn of(humans: &[Human]) -> BodyBalls {
         let mut out = BodyBalls::default();
         let mut bones = 0u32;
-        for human in humans {
-            for f in sampled_frames(human) {
+        let sampled: Vec<Vec<usize>> = humans.iter().map(sampled_frames).collect();
+        let total: usize = sampled.iter().map(Vec::len).sum();
+        let keep_every = total.div_ceil(MAX_SAMPLED_FRAMES).max(1);
+        for (human, frames) in humans.iter().zip(sampled) {
+            let middles: Vec<usize> = contact_middles(human).collect();
+            let kept = frames.into_iter().enumerate().filter(|(i, f)| i % keep_every == 0 || middles.contains(f));
+            for (_, f) in kept {
                 let joints: Vec<DVec3> = human.frame(f).collect();
                 bones += human.skeleton.bones.len() as u32;
                 for (k, bone) in human.skeleton.bones.iter().enumerate() {
@@ -71,6 +81,12 @@ impl BodyBalls {
             }
         }
         out
+    }
+
+    /// How many balls there are.
+    #[cfg(test)]
+    fn len(&self) -> usize {
+        self.cells.values().map(Vec::len).sum()
     }
 
     /// The balls that may reach into the horizontal rectangle `min`..`max`.
@@ -115,10 +131,16 @@ fn sampled_frames(human: &Human) -> Vec<usize> {
             last = joints;
         }
     }
-    frames.extend(human.contact_spans().map(|s| ((s.start + s.end) / 2).min(n - 1)));
+    frames.extend(contact_middles(human));
     frames.sort_unstable();
     frames.dedup();
     frames
+}
+
+/// The middle frame of each of `human`'s contact spans.
+fn contact_middles(human: &Human) -> impl Iterator<Item = usize> + '_ {
+    let last = human.frames.len().saturating_sub(1);
+    human.contact_spans().map(move |s| ((s.start + s.end) / 2).min(last))
 }
 
 fn cell_of(p: DVec2) -> (i32, i32) {
@@ -279,6 +301,25 @@ mod tests {
             hanging: false,
             category: Category::Stool,
         }
+    }
+
+    #[test]
+    fn many_people_are_thinned_to_a_bounded_number_of_frames_keeping_their_contact_frames() {
+        let body = Body::default();
+        let sitters = |n: usize| -> Vec<Human> {
+            (0..n)
+                .map(|k| {
+                    let mut m = Motion::new(body, 30.0);
+                    m.hold(sit(&body, DVec2::new(k as f64, 0.0), 0.45, 0.0), 4, Action::Sit);
+                    m.into_human(&format!("h{k}"))
+                })
+                .collect()
+        };
+        // Each sitter is sampled at frames 0, 2 (the contact span's middle) and 3.
+        let per_frame = BodyBalls::of(&sitters(1)).len() / 3;
+        assert_eq!(BodyBalls::of(&sitters(100)).len(), 100 * 3 * per_frame, "300 frames: all kept");
+        // 600 × 3 = 1,800 frames: every 4th kept (frame 0) and the middles (frame 2).
+        assert_eq!(BodyBalls::of(&sitters(600)).len(), 600 * 2 * per_frame);
     }
 
     #[test]
