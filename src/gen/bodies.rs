@@ -311,7 +311,7 @@ mod tests {
                 .map(|k| {
                     let mut m = Motion::new(body, 30.0);
                     m.hold(sit(&body, DVec2::new(k as f64, 0.0), 0.45, 0.0), 4, Action::Sit);
-                    m.into_human(&format!("h{k}"))
+                    m.into_human(format!("h{k}"))
                 })
                 .collect()
         };
