@@ -75,14 +75,21 @@ pub fn scene_files(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
 }
 
 fn load_all(dir: &Path) -> anyhow::Result<Vec<Scene>> {
-    Ok(scene_files(dir)?.iter().map(Scene::load).collect::<Result<_, _>>()?)
+    Ok(load_named(dir)?.1)
 }
 
-fn physics(dir: &Path, scenes: &[Scene]) -> anyhow::Result<PhysicsRates> {
+/// The scene files under `dir` and their scenes, in the same order.
+fn load_named(dir: &Path) -> anyhow::Result<(Vec<PathBuf>, Vec<Scene>)> {
     let files = scene_files(dir)?;
+    let scenes = files.iter().map(Scene::load).collect::<Result<_, _>>()?;
+    Ok((files, scenes))
+}
+
+/// The physics rates of `scenes`; a failure in one names its file (`files[i]` for `scenes[i]`).
+fn physics(files: &[PathBuf], scenes: &[Scene]) -> anyhow::Result<PhysicsRates> {
     let reports: Vec<_> = scenes
         .par_iter()
-        .zip(&files)
+        .zip(files)
         .map(|(s, f)| super::guarded(f, || Ok(check_scene(s, &CheckConfig::default()))))
         .collect();
     let reports = super::all_or_first_error(reports)?;
@@ -121,7 +128,7 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     let seen = pool.as_deref().map_or_else(|| counts.clone(), |p| CountDistribution::of(p, room));
     let mut rows = Vec::new();
     for dir in &args.pred {
-        let scenes = load_all(dir)?;
+        let (files, scenes) = load_named(dir)?;
         if let Some(s) = scenes.iter().find(|s| s.room_type != room) {
             anyhow::bail!("{}: holds {} scenes, the reference is {room}", dir.display(), s.room_type);
         }
@@ -134,7 +141,7 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
         };
         let mut row = evaluate(&name, &scenes, room, &freq);
         if !args.no_physics {
-            row.physics = Some(physics(dir, &scenes)?);
+            row.physics = Some(physics(&files, &scenes)?);
         }
         row.counts = Some(count_report(&scenes, &counts, &seen));
         row.sizes = Some(size_report(&scenes));

@@ -59,8 +59,8 @@ pub fn validate(scene: &Scene) -> Vec<Problem> {
     if scene.format != FORMAT {
         out.push("format", ProblemKind::WrongFormat { found: scene.format.clone() });
     }
-    floor_plan(scene, &mut out);
     let room = RoomBounds::of(scene);
+    floor_plan(scene, room, &mut out);
     objects(scene, room, &mut out);
     out.at_most("humans", "humans", scene.humans.len(), LIMITS.max_humans);
     let total_frames: usize = scene.humans.iter().map(|h| h.frames.len()).sum();
@@ -120,7 +120,7 @@ impl Problems {
     }
 }
 
-fn floor_plan(scene: &Scene, out: &mut Problems) {
+fn floor_plan(scene: &Scene, room: Option<RoomBounds>, out: &mut Problems) {
     let plan = &scene.floor_plan;
     out.positive(|| "floor_plan.height".into(), plan.height, LIMITS.max_height);
     let path = "floor_plan.polygon";
@@ -149,7 +149,7 @@ fn floor_plan(scene: &Scene, out: &mut Problems) {
     if !finite {
         return;
     }
-    if let Some(room) = RoomBounds::of(scene) {
+    if let Some(room) = room {
         for k in 0..2 {
             let side = room.max[k] - room.min[k];
             if side > LIMITS.max_room_side {

@@ -189,15 +189,25 @@ fn conditions_into_an_unwritable_place_fails_cleanly() {
     assert_eq!(std::fs::read_to_string(&blocker).unwrap(), "a file, not a folder");
 }
 
-#[test]
-fn repair_reads_every_scene_before_writing_any() {
-    let dir = tempfile::tempdir().unwrap();
-    let inputs = dir.path().join("in");
+/// `<dir>/in` holding the valid scene as `a.json` and, as `b.json`, one broken by `edit`; returns
+/// the folder and the broken file.
+fn good_and_bad_folder(
+    dir: &std::path::Path,
+    edit: impl FnOnce(&mut Value),
+) -> (std::path::PathBuf, std::path::PathBuf) {
+    let inputs = dir.join("in");
     std::fs::create_dir_all(&inputs).unwrap();
     write_file(&inputs, "a.json", &valid().to_string());
     let mut v = valid();
-    v["objects"][0]["size"][0] = json!(f64::NAN.to_string());
+    edit(&mut v);
     let bad = write_file(&inputs, "b.json", &v.to_string());
+    (inputs, bad)
+}
+
+#[test]
+fn repair_reads_every_scene_before_writing_any() {
+    let dir = tempfile::tempdir().unwrap();
+    let (inputs, bad) = good_and_bad_folder(dir.path(), |v| v["objects"][0]["size"][0] = json!(f64::NAN.to_string()));
     let out_dir = dir.path().join("out");
     let out = shade_sim(&["repair", inputs.to_str().unwrap(), "--out", out_dir.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2));
@@ -363,13 +373,10 @@ fn an_error_names_the_input_not_the_output_and_batches_do_not_stop_half_way() {
     // A folder with a good scene and one whose size is 1e308 (it panicked inside parry half-way
     // through a batch, after the good one was written, and `polish` named its own output file).
     let dir = tempfile::tempdir().unwrap();
-    let inputs = dir.path().join("in");
-    std::fs::create_dir_all(&inputs).unwrap();
-    write_file(&inputs, "a.json", &valid().to_string());
-    let mut v = valid();
-    v["humans"] = json!([]);
-    v["objects"][0]["size"][1] = json!(1e308);
-    let bad = write_file(&inputs, "b.json", &v.to_string());
+    let (inputs, bad) = good_and_bad_folder(dir.path(), |v| {
+        v["humans"] = json!([]);
+        v["objects"][0]["size"][1] = json!(1e308);
+    });
     let out_dir = dir.path().join("out");
     for args in [
         vec!["repair", inputs.to_str().unwrap(), "--out", out_dir.to_str().unwrap()],
