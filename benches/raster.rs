@@ -1,7 +1,6 @@
 //! Conditioning and rasterisation cost per scene: the free-space mask, the floor mask, contact
 //! boxes and all conditioning of each example scene; the footprints of 12 objects; 3D IoU of all
-//! pairs of 21 objects; and the largest floor plan validation accepts (256 vertices, 50 m across):
-//! reading it, conditioning it, checking it.
+//! pairs of 21 objects. (The largest inputs validation accepts are `benches/largest_inputs.rs`'.)
 //!
 //! Run: `cargo bench --bench raster`
 
@@ -9,10 +8,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use glam::{DVec2, DVec3};
 use shade_sim::geom::{Mask, OBox, RoomWindow, iou_3d};
 use shade_sim::human::{Conditions, contact_boxes, free_space_mask};
-use shade_sim::scene::{Scene, SceneLimits};
-use shade_sim::sim::{CheckConfig, check_scene};
 use std::hint::black_box;
-use std::path::Path;
 
 mod common;
 
@@ -67,49 +63,9 @@ fn bench(c: &mut Criterion) {
     });
 }
 
-/// The reference bedroom in a floor plan of the most vertices validation accepts, 50 m across: a
-/// star of alternating radii 24 and 23.5 m around its pieces and people.
-fn largest_floor_plan() -> Scene {
-    let mut scene = common::named_scenes("scenes/reference").into_iter().find(|(n, _)| n == "bedroom_rect").unwrap().1;
-    let polygon = scene.floor_plan.polygon();
-    let (lo, hi) = polygon.bounds();
-    let shift = DVec2::splat(25.0) - (lo + hi) * 0.5;
-    let n = SceneLimits::FORMAT.max_vertices;
-    scene.floor_plan.polygon = (0..n)
-        .map(|i| {
-            let a = i as f64 / n as f64 * std::f64::consts::TAU;
-            let r = if i % 2 == 0 { 24.0 } else { 23.5 };
-            [25.0 + r * a.cos(), 25.0 + r * a.sin()]
-        })
-        .collect();
-    for o in &mut scene.objects {
-        o.center[0] += shift.x;
-        o.center[1] += shift.y;
-    }
-    for h in &mut scene.humans {
-        for p in h.frames.iter_mut().flatten() {
-            p[0] += shift.x;
-            p[1] += shift.y;
-        }
-    }
-    scene
-}
-
-fn bench_largest_floor_plan(c: &mut Criterion) {
-    let scene = largest_floor_plan();
-    let text = scene.to_json();
-    let origin = Path::new("largest.json");
-    c.bench_function("largest_floor_plan/read_and_validate", |b| {
-        b.iter(|| Scene::from_json(black_box(&text), origin).unwrap())
-    });
-    c.bench_function("largest_floor_plan/conditions", |b| b.iter(|| Conditions::of(black_box(&scene))));
-    let cfg = CheckConfig { stability: false, ..CheckConfig::default() };
-    c.bench_function("largest_floor_plan/check_without_stability", |b| b.iter(|| check_scene(black_box(&scene), &cfg)));
-}
-
 criterion_group! {
     name = benches;
     config = Criterion::default().sample_size(30).measurement_time(std::time::Duration::from_secs(2));
-    targets = bench, bench_largest_floor_plan
+    targets = bench
 }
 criterion_main!(benches);

@@ -9,7 +9,7 @@
 //! within [`CLEARANCE`] of the piece (its deepest ball's reach: the capsule's depth, which is what
 //! the check measures, plus the clearance); a bone resting on a seat's top costs only when it is
 //! inside. Its gradient is a central difference of the exact value over the balls
-//! near the piece; the balls are bucketed once per scene on a grid.
+//! near the piece; a query skips the rows of balls (one per bone and frame) whose box is far.
 //!
 //! J_s (ours) is its other half, support: for a piece anchored to a sitter's or a sleeper's contact
 //! box, how far the top of the piece's parts under the box's centre stays below the box's top (the
@@ -20,7 +20,7 @@ use super::guidance::{GuidedObject, ObjectGradient};
 use crate::furniture::{Part, PartRole, template_of};
 use crate::scene::Human;
 use glam::{DVec2, DVec3};
-use std::collections::HashMap;
+use std::ops::Range;
 
 /// How far (m) bones are kept from pieces, except where they rest on a seat's top (the physics
 /// check allows 2 cm of depth; the guidance stops short of contact, where its pull is weakest).
@@ -38,8 +38,6 @@ const MAX_SAMPLED_FRAMES: usize = 512;
 /// How far (m) a part may move under the central differences' steps (1 mm of size or centre, a
 /// milliradian of yaw at up to 3 m from the centre).
 const DIFFERENCE_MARGIN: f64 = 0.005;
-/// Side (m) of the grid the balls are bucketed on.
-const CELL: f64 = 0.25;
 
 /// One ball of a bone capsule at one frame.
 #[derive(Debug, Clone, Copy)]
@@ -50,12 +48,34 @@ struct Ball {
     bone: u32,
 }
 
-/// The bodies of one scene as balls along their bones, bucketed on a horizontal grid by centre.
+/// The bodies of one scene as balls along their bones, one row of balls per bone and sampled
+/// frame, each row with the box around its balls' centres (so a query skips whole bones).
 #[derive(Debug, Clone, Default)]
 pub struct BodyBalls {
-    cells: HashMap<(i32, i32), Vec<Ball>>,
-    /// The largest radius (m): a ball reaches this far beyond its cell.
+    balls: Vec<Ball>,
+    rows: Vec<BallRow>,
+    /// The largest radius (m): a ball reaches this far beyond its centre.
     reach: f64,
+}
+
+/// One bone's balls at one frame: `BodyBalls::balls[range]`, their centres on the segment `a`..`b`.
+#[derive(Debug, Clone)]
+struct BallRow {
+    range: Range<usize>,
+    a: DVec3,
+    b: DVec3,
+    radius: f64,
+}
+
+impl BallRow {
+    /// At least how far (m) each of the row's balls stays beyond [`CLEARANCE`] of `part` (≤ 0
+    /// where one may reach it): the distance from the part's box to the box around the segment in
+    /// the part's frame, less the radius and the clearance.
+    fn clearance_from(&self, part: &PartFrame) -> f64 {
+        let (a, b) = (part.to_local(self.a), part.to_local(self.b));
+        let gap = (a.min(b) - part.half).max(-a.max(b) - part.half).max(DVec3::ZERO);
+        gap.length() - self.radius - CLEARANCE
+    }
 }
 
 impl BodyBalls {
@@ -74,9 +94,10 @@ impl BodyBalls {
                 bones += human.skeleton.bones.len() as u32;
                 for (k, bone) in human.skeleton.bones.iter().enumerate() {
                     out.reach = out.reach.max(bone.radius);
-                    for ball in balls_along(joints[bone.a], joints[bone.b], bone.radius, bones + k as u32) {
-                        out.cells.entry(cell_of(ball.center.truncate())).or_default().push(ball);
-                    }
+                    let (a, b) = (joints[bone.a], joints[bone.b]);
+                    let start = out.balls.len();
+                    out.balls.extend(balls_along(a, b, bone.radius, bones + k as u32));
+                    out.rows.push(BallRow { range: start..out.balls.len(), a, b, radius: bone.radius });
                 }
             }
         }
@@ -86,23 +107,26 @@ impl BodyBalls {
     /// How many balls there are.
     #[cfg(test)]
     fn len(&self) -> usize {
-        self.cells.values().map(Vec::len).sum()
+        self.balls.len()
     }
 
-    /// The balls that may reach into the horizontal rectangle `min`..`max`.
-    fn within(&self, min: DVec2, max: DVec2) -> Vec<Ball> {
-        let (min, max) = (min - self.reach, max + self.reach);
-        let (lo, hi) = (cell_of(min), cell_of(max));
+    /// The balls that may reach into the horizontal rectangle `min`..`max` and come within
+    /// `margin` of costing against `parts` (within `margin` + [`CLEARANCE`] of them), in the
+    /// order of their bones.
+    fn near(&self, min: DVec2, max: DVec2, parts: &[PartFrame], margin: f64) -> Vec<Ball> {
+        let low = parts.iter().map(|p| p.center.z - p.half.z).fold(f64::INFINITY, f64::min);
+        let high = parts.iter().map(|p| p.center.z + p.half.z).fold(f64::NEG_INFINITY, f64::max);
+        let lo = (min - self.reach).extend(low - self.reach - CLEARANCE - margin);
+        let hi = (max + self.reach).extend(high + self.reach + CLEARANCE + margin);
+        let inside = |c: DVec3| c.cmpge(lo).all() && c.cmple(hi).all();
         let mut out = Vec::new();
-        for i in lo.0..=hi.0 {
-            for j in lo.1..=hi.1 {
-                if let Some(balls) = self.cells.get(&(i, j)) {
-                    out.extend(balls.iter().filter(|b| {
-                        let c = b.center;
-                        c.x >= min.x && c.y >= min.y && c.x <= max.x && c.y <= max.y
-                    }));
-                }
+        for row in &self.rows {
+            let far = row.a.min(row.b).cmpgt(hi).any() || row.a.max(row.b).cmplt(lo).any();
+            if far || parts.iter().all(|p| row.clearance_from(p) > margin) {
+                continue;
             }
+            let balls = self.balls[row.range.clone()].iter();
+            out.extend(balls.filter(|b| inside(b.center) && deepest_part(parts, b) > -margin));
         }
         out
     }
@@ -143,13 +167,45 @@ fn contact_middles(human: &Human) -> impl Iterator<Item = usize> + '_ {
     human.contact_spans().map(move |s| ((s.start + s.end) / 2).min(last))
 }
 
-fn cell_of(p: DVec2) -> (i32, i32) {
-    ((p.x / CELL).floor() as i32, (p.y / CELL).floor() as i32)
+/// A template part ready for many distance queries: its box's rotation computed once (the cost's
+/// hot loop tests every nearby ball against every part, and recomputing the yaw's sine and cosine
+/// per test took half of `generate`'s time on crowded inputs).
+#[derive(Debug, Clone, Copy)]
+struct PartFrame {
+    center: DVec3,
+    /// The box's yaw as (cos, sin).
+    rotation: DVec2,
+    half: DVec3,
+    seat: bool,
+}
+
+impl PartFrame {
+    fn of(part: &Part) -> PartFrame {
+        let (s, c) = part.obox.yaw.sin_cos();
+        PartFrame {
+            center: part.obox.center,
+            rotation: DVec2::new(c, s),
+            half: part.obox.half(),
+            seat: part.role == PartRole::Seat,
+        }
+    }
+
+    /// `p` in the box's frame (as `OBox::to_local`).
+    fn to_local(self, p: DVec3) -> DVec3 {
+        let d = p - self.center;
+        let (c, s) = (self.rotation.x, self.rotation.y);
+        DVec3::new(c * d.x + s * d.y, -s * d.x + c * d.y, d.z)
+    }
+}
+
+/// The parts of `o`'s template, ready for distance queries.
+fn part_frames(o: &GuidedObject) -> Vec<PartFrame> {
+    template_of(o.category, &o.obox()).parts.iter().map(PartFrame::of).collect()
 }
 
 /// How far `ball` reaches within [`CLEARANCE`] of the piece's template parts (negative: how far it
 /// stays beyond).
-fn deepest_part(parts: &[Part], ball: &Ball) -> f64 {
+fn deepest_part(parts: &[PartFrame], ball: &Ball) -> f64 {
     parts.iter().map(|part| ball_depth(part, ball)).fold(f64::NEG_INFINITY, f64::max)
 }
 
@@ -157,7 +213,7 @@ fn deepest_part(parts: &[Part], ball: &Ball) -> f64 {
 /// [`CLEARANCE`] of its template, a bone's reach being its deepest ball's at that frame — one term
 /// per bone, frame and piece, so a long bone along a surface counts no more than a short one.
 fn piece_cost(o: &GuidedObject, balls: &[Ball]) -> f64 {
-    let parts = template_of(o.category, &o.obox()).parts;
+    let parts = part_frames(o);
     balls
         .chunk_by(|a, b| a.bone == b.bone)
         .map(|bone| bone.iter().map(|b| deepest_part(&parts, b)).fold(0.0, f64::max))
@@ -169,10 +225,9 @@ fn piece_cost(o: &GuidedObject, balls: &[Ball]) -> f64 {
 /// bed's mattress, a sofa's seat block, a stool's seat) is left through its top or sides only, and
 /// a ball on or in it from above needs no clearance: a body rests on a seat, so a sitter's thighs
 /// inside a seat too high ask for a lower seat by their depth, not one pushed up through them.
-fn ball_depth(part: &Part, ball: &Ball) -> f64 {
-    let l = part.obox.to_local(ball.center);
-    let h = part.obox.half();
-    let seat = part.role == PartRole::Seat;
+fn ball_depth(part: &PartFrame, ball: &Ball) -> f64 {
+    let l = part.to_local(ball.center);
+    let (h, seat) = (part.half, part.seat);
     let outside = (l.abs() - h).max(DVec3::ZERO);
     if outside != DVec3::ZERO {
         let resting = seat && outside.x == 0.0 && outside.y == 0.0 && l.z > 0.0;
@@ -198,15 +253,9 @@ pub fn body_penetration(objects: &[GuidedObject], bodies: &BodyBalls) -> (f64, V
         }
         let reach = DVec2::splat(o.size.x.hypot(o.size.y) * 0.5 + 0.01);
         let c = o.center.truncate();
-        let parts = template_of(o.category, &o.obox()).parts;
         // Only balls within a few millimetres of costing can change the cost as the gradient's
         // central differences move the piece.
-        let mut balls: Vec<Ball> = bodies
-            .within(c - reach, c + reach)
-            .into_iter()
-            .filter(|b| deepest_part(&parts, b) > -DIFFERENCE_MARGIN)
-            .collect();
-        balls.sort_by_key(|b| b.bone);
+        let balls = bodies.near(c - reach, c + reach, &part_frames(o), DIFFERENCE_MARGIN);
         let cost = piece_cost(o, &balls);
         if cost <= 0.0 {
             continue;
@@ -360,8 +409,9 @@ mod tests {
             let b = a + DVec3::new((t * 11.0).cos() * 0.3, 0.25, (t * 13.0).sin() * 0.3);
             let radius = 0.05 + 0.02 * (t * 17.0).sin().abs();
             let check = solids.iter().map(|s| capsule_depth(a, b, radius, s)).fold(0.0, f64::max);
+            let frames: Vec<PartFrame> = parts.iter().map(PartFrame::of).collect();
             let balls =
-                balls_along(a, b, radius, 0).map(|ball| deepest_part(&parts, &ball) - CLEARANCE).fold(0.0, f64::max);
+                balls_along(a, b, radius, 0).map(|ball| deepest_part(&frames, &ball) - CLEARANCE).fold(0.0, f64::max);
             // The row's union lies inside the capsule: never deeper than it.
             assert!(balls <= check + 1e-4, "{i}: balls {balls}, capsule {check}");
             // While the bone's axis is outside the piece, at distance d = radius − depth, the check's
@@ -382,7 +432,7 @@ mod tests {
     fn bones_are_kept_clear_of_pieces_except_on_a_seats_top() {
         let bodies = sitter(0.45);
         // The front of the sitter's shins and feet (their balls' furthest reach along +y).
-        let front = bodies.cells.values().flatten().map(|b| b.center.y + b.radius).fold(f64::MIN, f64::max);
+        let front = bodies.balls.iter().map(|b| b.center.y + b.radius).fold(f64::MIN, f64::max);
         // A wardrobe 5 mm in front of them costs (clearance); 2 cm away, nothing.
         let near = GuidedObject {
             center: DVec3::new(0.0, front + 0.005 + 0.3, 1.0),
@@ -413,5 +463,43 @@ mod tests {
         beside.center.x += 1.0;
         assert_eq!(support_shortfall(&[beside], &[vec![need]]).0, 0.0);
         assert_eq!(support_shortfall(&[stool(0.35)], &[vec![]]).0, 0.0);
+    }
+
+    #[test]
+    fn the_balls_near_a_piece_give_the_cost_and_gradient_of_all_balls() {
+        use crate::human::{lie, stand};
+        let body = Body::default();
+        let mut m = Motion::new(body, 30.0);
+        m.hold(sit(&body, DVec2::new(0.0, -0.05), 0.45, 0.0), 3, Action::Sit);
+        m.hold(lie(&body, DVec2::new(0.3, 0.2), 0.5, 0.7), 3, Action::Lie);
+        m.hold(stand(&body, DVec2::new(-0.4, 0.5), 2.0), 3, Action::Stand);
+        let bodies = BodyBalls::of(&[m.into_human("h0")]);
+        // Every ball that may cost, bone by bone, with no window and no test of whole rows.
+        let brute = |o: &GuidedObject| -> (f64, ObjectGradient) {
+            let parts = part_frames(o);
+            let balls: Vec<Ball> =
+                bodies.balls.iter().filter(|b| deepest_part(&parts, b) > -DIFFERENCE_MARGIN).copied().collect();
+            let cost = piece_cost(o, &balls);
+            (cost, if cost > 0.0 { central_differences(o, |moved| piece_cost(moved, &balls)) } else { [0.0; 7] })
+        };
+        let mut costly = 0;
+        for i in 0..120 {
+            let t = i as f64 * 0.618034;
+            let category = [Category::DoubleBed, Category::Chair, Category::Wardrobe, Category::Sofa][i % 4];
+            let size =
+                DVec3::new(0.5 + (t * 3.0).sin().abs() * 1.5, 0.5 + (t * 5.0).cos().abs(), 0.4 + (t * 7.0).sin().abs());
+            let piece = GuidedObject {
+                center: DVec3::new((t * 11.0).sin() * 0.8, (t * 13.0).cos() * 0.8, size.z * 0.5),
+                size,
+                yaw: t * 2.0,
+                hanging: false,
+                category,
+            };
+            let (cost, grads) = body_penetration(&[piece], &bodies);
+            let (want, want_grads) = brute(&piece);
+            assert_eq!((cost, grads[0]), (want, want_grads), "{i}: {category:?}");
+            costly += usize::from(cost > 0.0);
+        }
+        assert!(costly > 40, "only {costly} placements touched a body");
     }
 }

@@ -109,6 +109,21 @@ pub fn capsule_depth(a: DVec3, b: DVec3, radius: f64, solid: &Solid) -> f64 {
     }
 }
 
+/// The penetration depth of a capsule into a solid where it is deeper than `tolerance` (`None`
+/// otherwise), with two cheap bounds before parry's exact query: the boxes around both, and the
+/// distance from the segment's midpoint.
+pub fn capsule_depth_beyond(a: DVec3, b: DVec3, radius: f64, solid: &Solid, tolerance: f64) -> Option<f64> {
+    if !solid.near(a.min(b) - radius, a.max(b) + radius, 0.0) {
+        return None;
+    }
+    // The box's signed distance is 1-Lipschitz: if the segment's midpoint is further than half the
+    // segment plus the radius plus the tolerance, no point can be deeper.
+    if solid.obox.signed_distance((a + b) * 0.5) - a.distance(b) * 0.5 - radius > -tolerance {
+        return None;
+    }
+    Some(capsule_depth(a, b, radius, solid)).filter(|&depth| depth > tolerance)
+}
+
 /// Bone penetrations of one human, one violation per (bone, solid) episode at its deepest frame.
 ///
 /// Per frame, only the solids near the whole body's bounding box are tested against its bones.
@@ -143,19 +158,8 @@ fn penetrations(scene: &Scene, human: &Human, solids: &[Solid], tolerance: f64) 
         near.extend((0..n).filter(|&s| solids[s].near(lo, hi, 0.0)));
         for (b, bone) in sk.bones.iter().enumerate() {
             let (pa, pb) = (joints[bone.a], joints[bone.b]);
-            let (blo, bhi) = (pa.min(pb) - bone.radius, pa.max(pb) + bone.radius);
             for &s in &near {
-                if !solids[s].near(blo, bhi, 0.0) {
-                    continue;
-                }
-                // The box's signed distance is 1-Lipschitz: if the segment's midpoint is further
-                // than half the segment plus the radius plus the tolerance, no point can be deeper.
-                let mid = (pa + pb) * 0.5;
-                if solids[s].obox.signed_distance(mid) - pa.distance(pb) * 0.5 - bone.radius > -tolerance {
-                    continue;
-                }
-                let depth = capsule_depth(pa, pb, bone.radius, &solids[s]);
-                if depth > tolerance {
+                if let Some(depth) = capsule_depth_beyond(pa, pb, bone.radius, &solids[s], tolerance) {
                     let k = b * n + s;
                     hit[k] = true;
                     match &mut open[k] {

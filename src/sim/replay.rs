@@ -124,8 +124,7 @@ pub fn exact_contacts(scene: &Scene, tolerance: f64) -> Vec<EngineContact> {
                 // Deepest solid per owner, like the engine's deepest contact per collider pair.
                 let mut best: HashMap<Owner, f64> = HashMap::new();
                 for s in &solids {
-                    let d = super::capsule_depth(a, b, bone.radius, s);
-                    if d > tolerance {
+                    if let Some(d) = super::capsule_depth_beyond(a, b, bone.radius, s, tolerance) {
                         let e = best.entry(s.owner).or_insert(0.0);
                         *e = e.max(d);
                     }
