@@ -16,6 +16,7 @@ pub mod generator;
 pub mod geom;
 pub mod human;
 pub mod measure;
+pub mod motion;
 pub mod physics;
 pub mod pipeline;
 pub mod repair;

@@ -12,6 +12,7 @@ mod export;
 mod generate;
 mod guard;
 mod import;
+mod import_motion;
 mod inspect;
 mod output;
 mod progress;
@@ -109,6 +110,9 @@ pub enum Command {
     /// Convert the licensed MIME release of 3D-FRONT HUMAN (folders of boxes.npz) to shade-scene/1.
     #[command(name = "import-3dfront-human")]
     Import3dfrontHuman(import::ImportArgs),
+    /// Motion capture (BVH) or joint arrays (.npy/.npz) as a generation input: one human per file,
+    /// retargeted to our body, on the floor, placed, resampled, its actions labelled.
+    ImportMotion(import_motion::ImportMotionArgs),
 }
 
 /// How the process ends.
@@ -147,6 +151,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
         Command::Train(args) => train::run(args, &cli.global),
         Command::Repair(args) => repair::run(args, &cli.global),
         Command::Import3dfrontHuman(args) => import::run(args, &cli.global),
+        Command::ImportMotion(args) => import_motion::run(args, &cli.global),
     };
     match result {
         Err(e) if output::is_broken_pipe(&e) => Ok(ExitStatus::Success),

@@ -23,7 +23,7 @@ fn exported(room: RoomType, index: u64, format: &str, extra: &[&str]) -> (tempfi
 /// Runs `script` with the python of the venv `venv` (made by the setup scripts) and `args`;
 /// fails the test with Python's stderr when it fails.
 #[cfg(feature = "mujoco")]
-fn python(venv: &str, script: &str, args: &[&std::path::Path]) -> String {
+pub fn python(venv: &str, script: &str, args: &[&std::path::Path]) -> String {
     let out = std::process::Command::new(crate::root().join(venv).join("bin/python"))
         .env("PYTHONWARNINGS", "ignore")
         .arg("-c")

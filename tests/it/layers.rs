@@ -17,6 +17,7 @@ fn allowed(module: &str) -> Option<Vec<&'static str>> {
         "scene" => vec!["geom"],
         "human" | "furniture" | "physics" => vec!["geom", "scene"],
         "measure" => vec!["geom", "scene", "human", "furniture"],
+        "motion" => vec!["geom", "scene", "human"],
         "data" => above_base(&[]),
         "generator" | "repair" | "sim" | "eval" | "export" => above_base(&["data"]),
         "pipeline" => above_base(&["data", "generator", "repair", "sim"]),

@@ -11,6 +11,7 @@ mod hand_built;
 mod import;
 mod layers;
 mod model;
+mod motion;
 mod scene_io;
 mod sim;
 mod smoke_fuzz;

@@ -1,0 +1,179 @@
+//! `shade-sim import-motion MOTION… --room R --floor WxD|PLAN.json --out SCENE.json`: motion
+//! capture (BVH) and joint arrays (`.npy`/`.npz`) as a generation input, one human per file.
+
+use super::output::{print_json, print_text};
+use super::{ExitStatus, GlobalArgs, RoomArg};
+use anyhow::{Context, bail};
+use clap::{Args, ValueEnum};
+use glam::DVec2;
+use shade_sim::motion::{ImportOptions, Placement, Units, UpAxis, import_motion};
+use shade_sim::scene::{ActionSpan, FloorPlan};
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, Args)]
+pub struct ImportMotionArgs {
+    /// Motion files: BVH (.bvh) or joint positions (.npy, .npz); one human each, in order.
+    #[arg(required = true)]
+    pub motions: Vec<PathBuf>,
+    /// Room type of the input.
+    #[arg(long, value_enum)]
+    pub room: RoomArg,
+    /// The floor: `WxD` (a W × D m rectangle from the origin) or a JSON file holding a floor plan
+    /// (a scene, or its `floor_plan` object).
+    #[arg(long)]
+    pub floor: String,
+    /// The input to write (shade-scene/1, no objects).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Put a clip's start at X,Y (m) facing YAW_DEG (0 faces +y); once per motion, in order.
+    /// Without it, a clip keeps its own coordinates.
+    #[arg(long, value_name = "X,Y,YAW_DEG", allow_negative_numbers = true)]
+    pub place: Vec<String>,
+    /// Frames per second of the humans written.
+    #[arg(long, default_value_t = 30.0)]
+    pub fps: f64,
+    /// The person's stature (m): the clip is scaled to it. Default: measured from the clip, units
+    /// detected.
+    #[arg(long)]
+    pub stature: Option<f64>,
+    /// Units of the files' positions.
+    #[arg(long, value_enum, default_value_t = UnitsArg::Auto)]
+    pub units: UnitsArg,
+    /// Up axis of the files.
+    #[arg(long, value_enum, default_value_t = UpArg::Auto)]
+    pub up: UpArg,
+    /// Frame rate of .npy arrays (which carry none).
+    #[arg(long, default_value_t = 30.0)]
+    pub source_fps: f64,
+    /// Ceiling height of a `WxD` floor (m).
+    #[arg(long, default_value_t = 2.8)]
+    pub height: f64,
+    /// A JSON list of spans `{"action": "sit", "start": 30, "end": 90}` (frames as written) that
+    /// override the automatic labels; once per motion, in order.
+    #[arg(long)]
+    pub actions: Vec<PathBuf>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum UnitsArg {
+    Auto,
+    M,
+    Cm,
+    In,
+    /// The CMU database's unit (1/0.45 inch).
+    Cmu,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum UpArg {
+    Auto,
+    Y,
+    Z,
+}
+
+fn floor_of(arg: &str, height: f64) -> anyhow::Result<FloorPlan> {
+    let rect = arg.split_once(['x', 'X']).and_then(|(w, d)| Some((w.parse::<f64>().ok()?, d.parse::<f64>().ok()?)));
+    if let Some((w, d)) = rect {
+        if !(w.is_finite() && d.is_finite() && w > 0.0 && d > 0.0 && height.is_finite() && height > 0.0) {
+            bail!("--floor {arg}: the sides and --height must be positive numbers of metres");
+        }
+        return Ok(FloorPlan { polygon: vec![[0.0, 0.0], [w, 0.0], [w, d], [0.0, d]], height });
+    }
+    let path = Path::new(arg);
+    let text = std::fs::read_to_string(path).with_context(|| format!("{arg}: not WxD, and not a readable file"))?;
+    let value: serde_json::Value = serde_json::from_str(&text).with_context(|| format!("{arg}: not JSON"))?;
+    let plan = value.get("floor_plan").cloned().unwrap_or(value);
+    serde_json::from_value(plan).with_context(|| format!("{arg}: not a floor plan (`polygon` and `height`)"))
+}
+
+fn placement(arg: &str) -> anyhow::Result<Placement> {
+    let v: Vec<f64> = arg.split(',').map(|s| s.trim().parse::<f64>()).collect::<Result<_, _>>().unwrap_or_default();
+    match v[..] {
+        [x, y, yaw] if v.iter().all(|x| x.is_finite()) => Ok(Placement { at: DVec2::new(x, y), yaw_degrees: yaw }),
+        _ => bail!("--place {arg}: expected X,Y,YAW_DEG (three numbers)"),
+    }
+}
+
+fn spans(file: &Path) -> anyhow::Result<Vec<ActionSpan>> {
+    let text = std::fs::read_to_string(file).with_context(|| file.display().to_string())?;
+    serde_json::from_str(&text).with_context(|| format!("{}: not a list of action spans", file.display()))
+}
+
+pub fn run(args: &ImportMotionArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
+    if args.place.len() > args.motions.len() || args.actions.len() > args.motions.len() {
+        bail!("--place and --actions are given once per motion file, at most {}", args.motions.len());
+    }
+    for (name, v) in [("--fps", args.fps), ("--source-fps", args.source_fps)] {
+        if !(v.is_finite() && (1.0..=1000.0).contains(&v)) {
+            bail!("{name}: must be 1 to 1000 frames per second, not {v}");
+        }
+    }
+    if let Some(s) = args.stature.filter(|s| !(s.is_finite() && (0.5..=2.5).contains(s))) {
+        bail!("--stature: must be 0.5 to 2.5 m, not {s}");
+    }
+    let mut opts = ImportOptions::new(args.room.into(), floor_of(&args.floor, args.height)?);
+    opts.places = args.place.iter().map(|p| placement(p).map(Some)).collect::<anyhow::Result<_>>()?;
+    opts.actions = args.actions.iter().map(|f| spans(f)).collect::<anyhow::Result<_>>()?;
+    opts.fps = args.fps;
+    opts.source_fps = args.source_fps;
+    opts.stature = args.stature;
+    opts.units = match args.units {
+        UnitsArg::Auto => Units::Auto,
+        UnitsArg::M => Units::Metres,
+        UnitsArg::Cm => Units::Centimetres,
+        UnitsArg::In => Units::Inches,
+        UnitsArg::Cmu => Units::Cmu,
+    };
+    opts.up = match args.up {
+        UpArg::Auto => UpAxis::Auto,
+        UpArg::Y => UpAxis::Y,
+        UpArg::Z => UpAxis::Z,
+    };
+    if args.motions.iter().any(|m| same_file(m, &args.out)) {
+        bail!("{}: --out is one of the motion files; it would be overwritten", args.out.display());
+    }
+    let (scene, reports) = import_motion(&args.motions, &opts)?;
+    scene.save(&args.out)?;
+    if global.json {
+        let rows: Vec<serde_json::Value> = reports
+            .iter()
+            .zip(&scene.humans)
+            .map(|(r, h)| {
+                serde_json::json!({
+                    "file": r.file, "human": h.id, "rig": r.rig, "metres_per_unit": r.scale, "y_up": r.y_up,
+                    "stature": r.stature, "frames_read": r.frames.0, "frames_written": r.frames.1, "actions": r.actions,
+                })
+            })
+            .collect();
+        print_json(&serde_json::json!({ "out": args.out, "humans": rows }))?;
+    } else if global.quiet == 0 {
+        let mut text = String::new();
+        for (r, h) in reports.iter().zip(&scene.humans) {
+            let spans: Vec<String> =
+                r.actions.iter().map(|s| format!("{} {}–{}", s.action.name(), s.start, s.end)).collect();
+            text += &format!(
+                "{} → {}: {} rig, {} m per unit, {}-up, {:.2} m tall, {} → {} frames at {} fps; {}\n",
+                r.file.display(),
+                h.id,
+                r.rig,
+                r.scale,
+                if r.y_up { "y" } else { "z" },
+                r.stature,
+                r.frames.0,
+                r.frames.1,
+                args.fps,
+                spans.join(", ")
+            );
+        }
+        text += &format!("{}: {} humans, no objects\n", args.out.display(), scene.humans.len());
+        print_text(&text)?;
+    }
+    Ok(ExitStatus::Success)
+}
+
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    }
+}

@@ -1,0 +1,161 @@
+//! Action labels from kinematics: for each frame of a retargeted clip (z-up, metres), whether the
+//! person walks, stands, sits, lies or touches something, from the pelvis's height and speed, the
+//! trunk's inclination, the thighs' slope and the hands' reach — so that contact boxes and free
+//! floor come out right for clips nobody labelled.
+//!
+//! Per frame, in this order: **lie** where the trunk leans more than `lie_incline` from upright,
+//! the pelvis is below `lie_pelvis` of the stature and no ankle is more than `lie_ankles` below
+//! the pelvis (a sitter leaning far back in a lounge chair keeps a foot on the floor); **sit** where the pelvis is below
+//! `sit_pelvis` and the thighs slope less than `sit_thigh` (their drop over their length: 1
+//! standing, about 0 on a chair); **walk** where the pelvis moves faster than `walk_speed` over
+//! `speed_window`; **touch** where a wrist is `touch_reach` of the stature or more from the
+//! chest, horizontally, or above the shoulders, and slower than `touch_still`; **stand**
+//! otherwise. Then a majority vote over `smooth` seconds, and spans shorter than `min_span`
+//! joined to the span before them. It does not know what the person touches or sits on: that is
+//! the generator's job.
+
+use crate::human::Joint;
+use crate::scene::{Action, ActionSpan};
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+/// The labeller's thresholds (chosen on the calibrated val split's humans; docs/RESULTS.md).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LabelConfig {
+    /// Trunk inclination from upright (degrees) beyond which a low pelvis is lying. Default 55.
+    pub lie_incline: f64,
+    /// Pelvis height (fraction of stature) below which an inclined trunk is lying. Default 0.6.
+    pub lie_pelvis: f64,
+    /// How far (fraction of stature) a lier's lower ankle may be below the pelvis. Default 0.15.
+    pub lie_ankles: f64,
+    /// Pelvis height (fraction of stature) below which level thighs are sitting. Default 0.5.
+    pub sit_pelvis: f64,
+    /// Largest thigh slope (drop over length) of a sitter. Default 0.6.
+    pub sit_thigh: f64,
+    /// Pelvis speed (m/s, horizontal) above which a person walks. Default 0.3.
+    pub walk_speed: f64,
+    /// Seconds over which speeds are measured (centred). Default 0.4.
+    pub speed_window: f64,
+    /// A wrist's horizontal distance from the chest (fraction of stature) that reaches out.
+    /// Default 0.2.
+    pub touch_reach: f64,
+    /// Wrist speed (m/s) below which a reaching hand holds still. Default 0.3.
+    pub touch_still: f64,
+    /// Seconds of the majority vote. Default 0.5.
+    pub smooth: f64,
+    /// Shortest span (s); shorter ones join the span before them. Default 0.3.
+    pub min_span: f64,
+}
+
+impl Default for LabelConfig {
+    fn default() -> LabelConfig {
+        LabelConfig {
+            lie_incline: 55.0,
+            lie_pelvis: 0.6,
+            lie_ankles: 0.15,
+            sit_pelvis: 0.5,
+            sit_thigh: 0.6,
+            walk_speed: 0.3,
+            speed_window: 0.4,
+            touch_reach: 0.2,
+            touch_still: 0.3,
+            smooth: 0.5,
+            min_span: 0.3,
+        }
+    }
+}
+
+const ACTIONS: [Action; 5] = [Action::Walk, Action::Stand, Action::Sit, Action::Lie, Action::Touch];
+
+/// One action per frame of `frames` (z-up, metres; `JOINT_NAMES` order), for a person of
+/// `stature` m recorded at `fps`.
+pub fn label_frames(frames: &[[DVec3; 19]], fps: f64, stature: f64, cfg: &LabelConfig) -> Vec<Action> {
+    let n = frames.len();
+    let half = ((cfg.speed_window * fps * 0.5).round() as usize).max(1);
+    let speed = |f: usize, joint: Joint, horizontal: bool| -> f64 {
+        let (a, b) = (f.saturating_sub(half), (f + half).min(n - 1));
+        if a == b {
+            return 0.0;
+        }
+        let d = frames[b][joint.index()] - frames[a][joint.index()];
+        let d = if horizontal { d.truncate().length() } else { d.length() };
+        d * fps / (b - a) as f64
+    };
+    let raw: Vec<Action> = (0..n)
+        .map(|f| {
+            let p = &frames[f];
+            let at = |j: Joint| p[j.index()];
+            let trunk = at(Joint::Neck) - at(Joint::Pelvis);
+            let incline = trunk.angle_between(DVec3::Z).to_degrees();
+            let pelvis = at(Joint::Pelvis).z / stature;
+            let drop = |a: Joint, b: Joint| (at(a).z - at(b).z) / at(a).distance(at(b)).max(1e-6);
+            let slope = 0.5 * (drop(Joint::LeftHip, Joint::LeftKnee) + drop(Joint::RightHip, Joint::RightKnee));
+            let ankles = (at(Joint::Pelvis).z - at(Joint::LeftAnkle).z.min(at(Joint::RightAnkle).z)) / stature;
+            let reach = |wrist: Joint, shoulder: Joint| {
+                let out = at(wrist).truncate().distance(at(Joint::Chest).truncate()) >= cfg.touch_reach * stature;
+                (out || at(wrist).z > at(shoulder).z) && speed(f, wrist, false) < cfg.touch_still
+            };
+            if incline > cfg.lie_incline && pelvis < cfg.lie_pelvis && ankles < cfg.lie_ankles {
+                Action::Lie
+            } else if pelvis < cfg.sit_pelvis && slope < cfg.sit_thigh {
+                Action::Sit
+            } else if speed(f, Joint::Pelvis, true) > cfg.walk_speed {
+                Action::Walk
+            } else if reach(Joint::LeftWrist, Joint::LeftShoulder) || reach(Joint::RightWrist, Joint::RightShoulder) {
+                Action::Touch
+            } else {
+                Action::Stand
+            }
+        })
+        .collect();
+    let voted = majority(&raw, (cfg.smooth * fps * 0.5).round() as usize);
+    join_short(voted, ((cfg.min_span * fps).round() as usize).max(1))
+}
+
+/// Each frame's most common label within `half` frames either side (ties: its own, then the
+/// earliest in `ACTIONS`).
+fn majority(labels: &[Action], half: usize) -> Vec<Action> {
+    let n = labels.len();
+    (0..n)
+        .map(|f| {
+            let window = &labels[f.saturating_sub(half)..(f + half + 1).min(n)];
+            let count = |a: Action| window.iter().filter(|&&x| x == a).count();
+            let own = count(labels[f]);
+            ACTIONS
+                .into_iter()
+                .map(|a| (count(a), a))
+                .filter(|(c, _)| *c > own)
+                .max_by_key(|(c, _)| *c)
+                .map_or(labels[f], |(_, a)| a)
+        })
+        .collect()
+}
+
+/// Runs shorter than `min` frames take the label of the run before them (the first run, of the
+/// run after it).
+fn join_short(mut labels: Vec<Action>, min: usize) -> Vec<Action> {
+    loop {
+        let runs = runs(&labels);
+        if runs.len() <= 1 {
+            return labels;
+        }
+        let Some(k) = runs.iter().position(|r| r.end - r.start < min) else {
+            return labels;
+        };
+        let with = if k == 0 { runs[1].action } else { runs[k - 1].action };
+        labels[runs[k].start..runs[k].end].fill(with);
+    }
+}
+
+/// The labels as spans of equal actions.
+pub fn runs(labels: &[Action]) -> Vec<ActionSpan> {
+    let mut out: Vec<ActionSpan> = Vec::new();
+    for (f, &a) in labels.iter().enumerate() {
+        match out.last_mut() {
+            Some(span) if span.action == a => span.end = f + 1,
+            _ => out.push(ActionSpan { start: f, end: f + 1, action: a }),
+        }
+    }
+    out
+}

@@ -1,0 +1,356 @@
+//! Real human motion in: motion-capture files (BVH) and joint-position arrays (`.npy`/`.npz`)
+//! turned into the humans of a `shade-scene/1` generation input.
+//!
+//! Reading ([`bvh`], [`npy`]) gives joint positions in the file's units and axes; [`rig`] finds
+//! our 19 joints among them; [`import_motion`] then makes the up axis z, the units metres (from the
+//! body's measured height), puts the lowest toe on the floor, places the clip where asked,
+//! resamples it and labels every frame's action ([`labels`]). It does not generate furniture, and
+//! it does not smooth or fix the motion beyond that.
+
+pub mod bvh;
+mod clip;
+mod error;
+pub mod labels;
+pub mod npy;
+pub mod rig;
+
+pub use clip::{Clip, MAX_FRAMES, MAX_JOINTS, MAX_POSITIONS};
+pub use error::MotionError;
+pub use labels::{LabelConfig, label_frames};
+pub use rig::{Retargeted, retarget};
+
+use crate::human::{Body, Joint, round_mm, stand_local};
+use crate::scene::{ActionSpan, FloorPlan, Human, RoomType, Scene, validate};
+use glam::{DVec2, DVec3};
+use std::path::{Path, PathBuf};
+
+/// The units of a file's positions.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Units {
+    /// Told by the body's height: 1–2.5 units tall is metres, 100–250 centimetres, 39–99 inches,
+    /// 25–38 CMU's units.
+    #[default]
+    Auto,
+    /// Metres.
+    Metres,
+    /// Centimetres.
+    Centimetres,
+    /// Inches.
+    Inches,
+    /// The CMU motion-capture database's length unit (its ASF files' 0.45 scale: 1/0.45 inch), kept
+    /// by its BVH conversion.
+    Cmu,
+}
+
+impl Units {
+    /// Metres per unit (`None` for `Auto`).
+    pub fn metres(self) -> Option<f64> {
+        match self {
+            Units::Auto => None,
+            Units::Metres => Some(1.0),
+            Units::Centimetres => Some(0.01),
+            Units::Inches => Some(0.0254),
+            Units::Cmu => Some(0.0254 / 0.45),
+        }
+    }
+
+    /// The units in which a body `height` units tall is 1–2.5 m tall, if one is.
+    fn detect(height: f64) -> Option<Units> {
+        let ranges = [
+            (Units::Metres, 1.0, 2.5),
+            (Units::Centimetres, 100.0, 250.0),
+            (Units::Inches, 39.0, 99.0),
+            (Units::Cmu, 25.0, 38.9),
+        ];
+        ranges.into_iter().find(|(_, lo, hi)| (*lo..=*hi).contains(&height)).map(|(u, _, _)| u)
+    }
+}
+
+/// The up axis of a file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum UpAxis {
+    /// Whichever of y and z the body spans further along in the first frame.
+    #[default]
+    Auto,
+    /// y up (BVH's usual convention): x stays, y becomes z, z becomes −y.
+    Y,
+    /// z up, as our scenes.
+    Z,
+}
+
+/// Where a clip's start goes: its pelvis over `at`, facing `yaw_degrees` (0 faces +y, 90 faces −x:
+/// the scenes' yaw convention).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Placement {
+    /// The floor position of the pelvis at the first frame (m).
+    pub at: DVec2,
+    /// The facing at the first frame (degrees).
+    pub yaw_degrees: f64,
+}
+
+/// How to import.
+#[derive(Debug, Clone)]
+pub struct ImportOptions {
+    /// The room type of the input written.
+    pub room_type: RoomType,
+    /// Its floor plan.
+    pub floor: FloorPlan,
+    /// Placement of each clip, in file order (`None`, or a list shorter than the files: the clip
+    /// keeps its own coordinates).
+    pub places: Vec<Option<Placement>>,
+    /// Frames per second of the humans written (default 30).
+    pub fps: f64,
+    /// The person's stature (m): the clip is scaled to it. `None`: measured, units detected.
+    pub stature: Option<f64>,
+    /// The files' units (where no stature is given).
+    pub units: Units,
+    /// The files' up axis.
+    pub up: UpAxis,
+    /// Frame rate of `.npy` arrays, which carry none (default 30).
+    pub source_fps: f64,
+    /// The action labeller's thresholds.
+    pub labels: LabelConfig,
+    /// Per clip, spans (in the written frames) whose action is given rather than labelled.
+    pub actions: Vec<Vec<ActionSpan>>,
+}
+
+impl ImportOptions {
+    /// Defaults for a room: 30 fps, measured stature, detected units and up axis.
+    pub fn new(room_type: RoomType, floor: FloorPlan) -> ImportOptions {
+        ImportOptions {
+            room_type,
+            floor,
+            places: Vec::new(),
+            fps: 30.0,
+            stature: None,
+            units: Units::Auto,
+            up: UpAxis::Auto,
+            source_fps: 30.0,
+            labels: LabelConfig::default(),
+            actions: Vec::new(),
+        }
+    }
+}
+
+/// What the import found in one file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ImportReport {
+    /// The file.
+    pub file: PathBuf,
+    /// The rig recognised (`rig::Retargeted::rig`).
+    pub rig: &'static str,
+    /// Metres per file unit.
+    pub scale: f64,
+    /// Whether the file was y-up.
+    pub y_up: bool,
+    /// The person's stature (m).
+    pub stature: f64,
+    /// Frames read, and written.
+    pub frames: (usize, usize),
+    /// The spans written.
+    pub actions: Vec<ActionSpan>,
+}
+
+/// The stature of the person in `frames` (z-up, any unit), the larger of two estimates as
+/// fractions of our standing body: the most the head joint rises above the lower toe (right where
+/// the clip stands up at least once; rigs differ in where they put the pelvis and neck), and the
+/// median over frames of the legs' and trunk's length — thigh, shank, pelvis to neck, neck to head
+/// (right for a clip that never stands up).
+pub fn measured_stature(frames: &[[DVec3; 19]]) -> f64 {
+    let standing = stand_local(&Body::new(1.0)).0;
+    let height =
+        |p: &[DVec3; 19]| p[Joint::Head.index()].z - p[Joint::LeftToe.index()].z.min(p[Joint::RightToe.index()].z);
+    let length = |p: &[DVec3; 19]| {
+        let d = |a: Joint, b: Joint| p[a.index()].distance(p[b.index()]);
+        let thigh = 0.5 * (d(Joint::LeftHip, Joint::LeftKnee) + d(Joint::RightHip, Joint::RightKnee));
+        let shank = 0.5 * (d(Joint::LeftKnee, Joint::LeftAnkle) + d(Joint::RightKnee, Joint::RightAnkle));
+        thigh + shank + d(Joint::Pelvis, Joint::Neck) + d(Joint::Neck, Joint::Head)
+    };
+    let tallest = frames.iter().map(height).fold(0.0, f64::max) / height(&standing);
+    let mut lengths: Vec<f64> = frames.iter().map(length).collect();
+    lengths.sort_by(f64::total_cmp);
+    let median = lengths.get(lengths.len() / 2).map_or(0.0, |l| l / length(&standing));
+    tallest.max(median)
+}
+
+/// A scene human's frames in our joint order (`None` if its skeleton lacks one of our joints).
+pub fn body_frames(human: &Human) -> Option<Vec<[DVec3; 19]>> {
+    let index: Vec<usize> = crate::scene::JOINT_NAMES.iter().map(|n| human.skeleton.joint(n)).collect::<Option<_>>()?;
+    Some((0..human.frames.len()).map(|f| std::array::from_fn(|j| human.joint_at(f, index[j]))).collect())
+}
+
+/// Reads one motion file (`.bvh`, `.npy`, `.npz`) into a clip.
+pub fn read_motion(file: &Path, source_fps: f64) -> Result<Clip, MotionError> {
+    let bytes = std::fs::read(file).map_err(|error| MotionError::Io { file: file.to_path_buf(), error })?;
+    let ext = file.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    let clip = match ext.as_str() {
+        "bvh" => match std::str::from_utf8(&bytes) {
+            Ok(text) => bvh::read_bvh(text),
+            Err(e) => Err(format!("not a text file (byte {} is not UTF-8)", e.valid_up_to())),
+        },
+        "npy" => npy::read_npy(&bytes, source_fps),
+        "npz" => npy::read_npz(&bytes, source_fps),
+        _ => Err(format!("unknown motion format `.{ext}`: BVH (.bvh) or joint arrays (.npy, .npz)")),
+    };
+    clip.map_err(|message| MotionError::invalid(file, message))
+}
+
+/// A generation input: `opts.floor` with one human per file, in file order, ids `h0`, `h1`…
+pub fn import_motion(files: &[PathBuf], opts: &ImportOptions) -> Result<(Scene, Vec<ImportReport>), MotionError> {
+    let mut scene = Scene {
+        format: crate::scene::FORMAT.to_string(),
+        room_type: opts.room_type,
+        floor_plan: opts.floor.clone(),
+        objects: Vec::new(),
+        humans: Vec::new(),
+    };
+    let mut reports = Vec::new();
+    for (i, file) in files.iter().enumerate() {
+        let clip = read_motion(file, opts.source_fps)?;
+        let place = opts.places.get(i).copied().flatten();
+        let given = opts.actions.get(i).map_or(&[][..], Vec::as_slice);
+        let (human, report) =
+            human_of(&clip, i, place, given, &scene, opts).map_err(|m| MotionError::invalid(file, m))?;
+        scene.humans.push(human);
+        reports.push(ImportReport { file: file.clone(), ..report });
+    }
+    if let Some(problem) = validate(&scene).into_iter().next() {
+        let file = files.first().cloned().unwrap_or_default();
+        return Err(MotionError::invalid(file, format!("the input it makes is not valid: {problem}")));
+    }
+    Ok((scene, reports))
+}
+
+/// One clip as the human `h{i}` of `scene`.
+fn human_of(
+    clip: &Clip,
+    i: usize,
+    place: Option<Placement>,
+    given: &[ActionSpan],
+    scene: &Scene,
+    opts: &ImportOptions,
+) -> Result<(Human, ImportReport), String> {
+    let y_up = match opts.up {
+        UpAxis::Y => true,
+        UpAxis::Z => false,
+        UpAxis::Auto => {
+            let extent = |axis: usize| {
+                let v = clip.frames[0].iter().map(|p| p[axis]);
+                v.clone().fold(f64::MIN, f64::max) - v.fold(f64::MAX, f64::min)
+            };
+            extent(1) > extent(2)
+        }
+    };
+    let to_z_up = |p: DVec3| if y_up { DVec3::new(p.x, -p.z, p.y) } else { p };
+    let upright =
+        Clip { frames: clip.frames.iter().map(|f| f.iter().map(|&p| to_z_up(p)).collect()).collect(), ..clip.clone() };
+    let Retargeted { rig, frames } = retarget(&upright, DVec3::Z)?;
+    // Height and units.
+    let toe = |f: &[DVec3; 19]| f[Joint::LeftToe.index()].z.min(f[Joint::RightToe.index()].z);
+    let measured = measured_stature(&frames);
+    let scale = match (opts.stature, opts.units.metres()) {
+        (Some(stature), _) => stature / measured,
+        (None, Some(metres)) => metres,
+        (None, None) => Units::detect(measured).and_then(Units::metres).ok_or_else(|| {
+            format!("cannot tell the units: the body is {measured:.3} units tall (is the up axis right?); pass --units or --stature")
+        })?,
+    };
+    let stature = opts.stature.unwrap_or(measured * scale);
+    if !(scale.is_finite() && scale > 0.0 && (0.5..=2.5).contains(&stature)) {
+        return Err(format!("the body is {stature:.2} m tall once scaled; pass --units, --up or --stature"));
+    }
+    let body = Body::new(stature);
+    let mut frames: Vec<[DVec3; 19]> = frames.iter().map(|f| f.map(|p| p * scale)).collect();
+    if let Some(place) = place {
+        placed(&mut frames, place);
+    }
+    let mut frames = resample(&frames, clip.fps, opts.fps);
+    let lift = body.foot_radius() - frames.iter().map(toe).fold(f64::MAX, f64::min);
+    frames.iter_mut().flatten().for_each(|p| p.z += lift);
+    let polygon = scene.floor_plan.polygon();
+    for (f, pose) in frames.iter().enumerate() {
+        for joint in [Joint::Pelvis, Joint::LeftAnkle, Joint::RightAnkle] {
+            let p = pose[joint.index()];
+            if !polygon.contains(p.truncate()) {
+                return Err(format!(
+                    "frame {f} ({:.2} s): the {} is outside the floor plan, at ({:.2}, {:.2}); place the clip with --place",
+                    f as f64 / opts.fps,
+                    crate::scene::JOINT_NAMES[joint.index()].replace('_', " "),
+                    p.x,
+                    p.y
+                ));
+            }
+        }
+    }
+    let mut labels = label_frames(&frames, opts.fps, stature, &opts.labels);
+    for span in given {
+        if span.start >= span.end || span.end > frames.len() {
+            return Err(format!(
+                "--actions: span {}..{} is not within the {} frames written",
+                span.start,
+                span.end,
+                frames.len()
+            ));
+        }
+        labels[span.start..span.end].fill(span.action);
+    }
+    let actions = labels::runs(&labels);
+    let human = Human {
+        id: format!("h{i}"),
+        skeleton: body.skeleton(),
+        fps: opts.fps,
+        frames: frames
+            .iter()
+            .map(|f| f.iter().map(|p| [round_mm(p.x), round_mm(p.y), round_mm(p.z)]).collect())
+            .collect(),
+        actions: actions.clone(),
+    };
+    let report = ImportReport {
+        file: PathBuf::new(),
+        rig,
+        scale,
+        y_up,
+        stature,
+        frames: (clip.frames.len(), frames.len()),
+        actions,
+    };
+    Ok((human, report))
+}
+
+/// The facing yaw (scene convention: 0 faces +y) of a pose: perpendicular to its hips, forward.
+fn facing_yaw(pose: &[DVec3; 19]) -> f64 {
+    let left = (pose[Joint::LeftHip.index()] - pose[Joint::RightHip.index()]).truncate();
+    let forward = DVec2::new(left.y, -left.x);
+    (-forward.x).atan2(forward.y)
+}
+
+/// Moves and turns `frames` so that the first frame's pelvis is over `place.at`, facing its yaw.
+fn placed(frames: &mut [[DVec3; 19]], place: Placement) {
+    let start = frames[0][Joint::Pelvis.index()].truncate();
+    let turn = place.yaw_degrees.to_radians() - facing_yaw(&frames[0]);
+    let (s, c) = turn.sin_cos();
+    for pose in frames.iter_mut() {
+        for p in pose.iter_mut() {
+            let d = p.truncate() - start;
+            let r = DVec2::new(c * d.x - s * d.y, s * d.x + c * d.y) + place.at;
+            *p = r.extend(p.z);
+        }
+    }
+}
+
+/// `frames` recorded at `from` fps, at `to` fps (linear between neighbours; the last frame kept
+/// where the duration is not a whole number of new frames).
+fn resample(frames: &[[DVec3; 19]], from: f64, to: f64) -> Vec<[DVec3; 19]> {
+    let duration = (frames.len() - 1) as f64 / from;
+    // (A frame time written to 6 digits, 0.033333, is not quite 30 fps: a hundredth of a frame
+    // of slack keeps the last frame.)
+    let n = (duration * to + 0.01).floor() as usize + 1;
+    (0..n)
+        .map(|k| {
+            let t = k as f64 / to * from;
+            let (a, w) = ((t.floor() as usize).min(frames.len() - 1), t.fract());
+            let b = (a + 1).min(frames.len() - 1);
+            std::array::from_fn(|j| frames[a][j].lerp(frames[b][j], w))
+        })
+        .collect()
+}

@@ -1,0 +1,160 @@
+//! Joint-position arrays: `.npy` (T × J × 3, float) and `.npz` archives holding such an array
+//! with, optionally, its joint names and frame rate — what people export after running SMPL-X or
+//! AMASS fits through their own body model.
+//!
+//! In an `.npz`, the positions are the array `joints` (or `positions`, `joint_positions`), the
+//! names the string array `names` (or `joint_names`), the frame rate the scalar `fps` (or AMASS's
+//! `mocap_framerate`). Without names, an array of 22, 24, 52 or 55 joints is taken to be in SMPL /
+//! SMPL-H / SMPL-X order, whose first 22 joints are the body's. Units and axes are kept as in the
+//! file (`rig` detects and converts them).
+
+use super::clip::{Clip, MAX_JOINTS, MAX_POSITIONS};
+use glam::DVec3;
+use npyz::NpyFile;
+use npyz::npz::NpzArchive;
+use std::io::{Cursor, Read};
+
+/// The 22 body joints of SMPL, SMPL-H and SMPL-X, in their order.
+pub const SMPL_BODY_JOINTS: [&str; 22] = [
+    "pelvis",
+    "left_hip",
+    "right_hip",
+    "spine1",
+    "left_knee",
+    "right_knee",
+    "spine2",
+    "left_ankle",
+    "right_ankle",
+    "spine3",
+    "left_foot",
+    "right_foot",
+    "neck",
+    "left_collar",
+    "right_collar",
+    "head",
+    "left_shoulder",
+    "right_shoulder",
+    "left_elbow",
+    "right_elbow",
+    "left_wrist",
+    "right_wrist",
+];
+
+/// Joint counts read as SMPL-family arrays when no names come with them.
+const SMPL_SIZES: [usize; 4] = [22, 24, 52, 55];
+
+/// Reads a `.npy` file's bytes; `fps` is the clip's frame rate (a `.npy` has none).
+pub fn read_npy(bytes: &[u8], fps: f64) -> Result<Clip, String> {
+    let npy = NpyFile::new(bytes).map_err(|e| format!("not a .npy array: {e}"))?;
+    let (frames, joints) = positions(npy, "the array")?;
+    clip(frames, joints, None, fps)
+}
+
+/// Reads a `.npz` archive's bytes; `fps` is the frame rate where the archive has none.
+pub fn read_npz(bytes: &[u8], fps: f64) -> Result<Clip, String> {
+    let mut archive = NpzArchive::new(Cursor::new(bytes)).map_err(|e| format!("not a .npz archive: {e}"))?;
+    let names: Vec<String> = archive.array_names().map(str::to_string).collect();
+    let pick = |wanted: &[&str]| wanted.iter().find(|w| names.iter().any(|n| n == *w)).map(|w| w.to_string());
+    let key = pick(&["joints", "positions", "joint_positions"]).ok_or_else(|| {
+        format!("no array `joints` (or `positions`, `joint_positions`) among its arrays: {}", names.join(", "))
+    })?;
+    let (frames, joints) = positions(entry(&mut archive, &key)?, &format!("array `{key}`"))?;
+    let joint_names = match pick(&["names", "joint_names"]) {
+        Some(k) => Some(strings(entry(&mut archive, &k)?, &k)?),
+        None => None,
+    };
+    let fps = match pick(&["fps", "mocap_framerate"]) {
+        Some(k) => scalar(entry(&mut archive, &k)?, &k)?,
+        None => fps,
+    };
+    clip(frames, joints, joint_names, fps)
+}
+
+fn entry<'a>(archive: &'a mut NpzArchive<Cursor<&[u8]>>, name: &str) -> Result<NpyFile<impl Read + 'a>, String> {
+    archive.by_name(name).map_err(|e| format!("array `{name}`: {e}"))?.ok_or_else(|| format!("no array `{name}`"))
+}
+
+/// The frames (T × J positions) of a T × J × 3 float array.
+fn positions(npy: NpyFile<impl Read>, what: &str) -> Result<(usize, Vec<DVec3>), String> {
+    let shape = npy.shape().to_vec();
+    let [t, j, 3] = shape[..] else {
+        return Err(format!("{what} has shape {shape:?}; joint positions are frames × joints × 3"));
+    };
+    if t == 0 || j == 0 {
+        return Err(format!("{what} has shape {shape:?}: no frames or no joints"));
+    }
+    if j > MAX_JOINTS as u64 || t.saturating_mul(j) > MAX_POSITIONS as u64 {
+        return Err(format!("{what} has shape {shape:?}: more than {MAX_JOINTS} joints or {MAX_POSITIONS} positions"));
+    }
+    if npy.order() == npyz::Order::Fortran {
+        return Err(format!("{what} is stored in Fortran order; save it with numpy.ascontiguousarray"));
+    }
+    let values = numbers(npy).map_err(|e| format!("{what}: {e}"))?;
+    if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+        let (frame, joint) = (k / (3 * j as usize), k / 3 % j as usize);
+        return Err(format!("{what}: frame {} joint {joint} is not a finite number", frame + 1));
+    }
+    Ok((j as usize, values.chunks_exact(3).map(|c| DVec3::new(c[0], c[1], c[2])).collect()))
+}
+
+fn strings(npy: NpyFile<impl Read>, name: &str) -> Result<Vec<String>, String> {
+    if npy.shape().len() != 1 {
+        return Err(format!("array `{name}` has shape {:?}; joint names are one string per joint", npy.shape()));
+    }
+    if npy.shape()[0] > MAX_JOINTS as u64 {
+        return Err(format!("array `{name}`: more than {MAX_JOINTS} names"));
+    }
+    match npy.try_data::<String>() {
+        Ok(names) => names.collect::<Result<_, _>>().map_err(|e| format!("array `{name}` cannot be read: {e}")),
+        Err(npy) => Err(format!("array `{name}` holds {}, not strings", npy.dtype().descr())),
+    }
+}
+
+fn scalar(npy: NpyFile<impl Read>, name: &str) -> Result<f64, String> {
+    if npy.shape().iter().product::<u64>() != 1 {
+        return Err(format!("array `{name}` has shape {:?}; a frame rate is one number", npy.shape()));
+    }
+    numbers(npy).map(|v| v[0]).map_err(|e| format!("array `{name}`: {e}"))
+}
+
+/// The values of a float or integer array as f64.
+fn numbers(npy: NpyFile<impl Read>) -> Result<Vec<f64>, String> {
+    let read = |e: std::io::Error| format!("cannot be read: {e}");
+    let npy = match npy.try_data::<f64>() {
+        Ok(values) => return values.collect::<Result<_, _>>().map_err(read),
+        Err(npy) => npy,
+    };
+    let npy = match npy.try_data::<f32>() {
+        Ok(values) => return values.map(|v| v.map(f64::from)).collect::<Result<_, _>>().map_err(read),
+        Err(npy) => npy,
+    };
+    match npy.try_data::<i64>() {
+        Ok(values) => values.map(|v| v.map(|x| x as f64)).collect::<Result<_, _>>().map_err(read),
+        Err(npy) => Err(format!("holds {}, not numbers", npy.dtype().descr())),
+    }
+}
+
+fn clip(joints: usize, flat: Vec<DVec3>, names: Option<Vec<String>>, fps: f64) -> Result<Clip, String> {
+    let names = match names {
+        Some(names) if names.len() == joints => names,
+        Some(names) => return Err(format!("{} joint names for {joints} joints", names.len())),
+        None if SMPL_SIZES.contains(&joints) => {
+            (0..joints).map(|i| SMPL_BODY_JOINTS.get(i).map_or(format!("joint_{i}"), |s| s.to_string())).collect()
+        }
+        None => {
+            return Err(format!(
+                "unknown rig: {joints} joints without names (name them in an .npz array `names`, or use SMPL's order \
+                 of 22, 24, 52 or 55 joints)"
+            ));
+        }
+    };
+    if !(fps.is_finite() && (1.0..=1000.0).contains(&fps)) {
+        return Err(format!("the frame rate must be 1 to 1000 per second, not {fps}"));
+    }
+    Ok(Clip {
+        parents: vec![None; joints],
+        names,
+        fps,
+        frames: flat.chunks_exact(joints).map(<[DVec3]>::to_vec).collect(),
+    })
+}

@@ -1,0 +1,411 @@
+//! Real motion in (`shade_sim::motion`, `shade-sim import-motion`): the shipped motion-capture
+//! clips import with their rig, units and up axis found; a motion of our own body written as a
+//! SMPL joint array (centimetres, y-up) comes back as it was; placement, labels, bad files, and
+//! the MJCF replay of an imported clip.
+
+use super::{root, shade_sim};
+use glam::{DVec2, DVec3};
+use npyz::WriterBuilder;
+use shade_sim::geom::Polyline;
+use shade_sim::human::{Body, Joint, Motion, sit, stand};
+use shade_sim::motion::{ImportOptions, Placement, body_frames, import_motion, label_frames, measured_stature};
+use shade_sim::scene::{Action, FloorPlan, Human, RoomType, Scene};
+use std::path::{Path, PathBuf};
+
+fn floor(w: f64, d: f64) -> FloorPlan {
+    FloorPlan { polygon: vec![[0.0, 0.0], [w, 0.0], [w, d], [0.0, d]], height: 2.8 }
+}
+
+fn clip(name: &str) -> PathBuf {
+    root().join("scenes/motion").join(name)
+}
+
+fn import_one(file: &Path, opts: &ImportOptions) -> (Human, shade_sim::motion::ImportReport) {
+    let (scene, mut reports) = import_motion(&[file.to_path_buf()], opts).unwrap_or_else(|e| panic!("{e}"));
+    (scene.humans.into_iter().next().unwrap(), reports.remove(0))
+}
+
+fn placed_in_a_big_room() -> ImportOptions {
+    let mut opts = ImportOptions::new(RoomType::Living, floor(30.0, 30.0));
+    opts.places = vec![Some(Placement { at: DVec2::new(15.0, 15.0), yaw_degrees: 0.0 })];
+    opts
+}
+
+#[test]
+fn every_shipped_clip_imports_with_its_rig_units_and_feet_on_the_floor() {
+    // (file, rig, metres per unit, frames written at 30 fps)
+    let cmu = 0.0254 / 0.45;
+    let expected = [
+        ("assimp_boxing.bvh", "BioVision-style", 0.01, 451),
+        ("cmu_01_01.bvh", "MotionBuilder-style", cmu, 451),
+        ("cmu_01_03.bvh", "MotionBuilder-style", cmu, 451),
+        ("freebvh_walk.bvh", "MotionBuilder-style", 0.01, 69),
+        ("freemocap_lafan.bvh", "MotionBuilder-style", 0.01, 451),
+        ("freemocap_rigify.bvh", "topology", 1.0, 449),
+        ("mocapbank_sit.bvh", "BioVision-style", 0.01, 451),
+    ];
+    for (name, rig, scale, frames) in expected {
+        let (human, report) = import_one(&clip(name), &placed_in_a_big_room());
+        assert_eq!((report.rig, report.y_up, human.frames.len()), (rig, true, frames), "{name}");
+        assert!((report.scale - scale).abs() < 1e-12, "{name}: {}", report.scale);
+        assert!((1.4..=1.9).contains(&report.stature), "{name}: {} m tall", report.stature);
+        let joints = body_frames(&human).unwrap();
+        let toe = |f: &[DVec3; 19]| f[Joint::LeftToe.index()].z.min(f[Joint::RightToe.index()].z);
+        let lowest = joints.iter().map(toe).fold(f64::MAX, f64::min);
+        let radius = Body::new(report.stature).foot_radius();
+        assert!((lowest - radius).abs() < 2e-4, "{name}: lowest toe at {lowest}, foot radius {radius}");
+        // Upright at the start: the head well above the pelvis, the pelvis above the knees.
+        let first = &joints[0];
+        assert!(first[Joint::Head.index()].z > first[Joint::Pelvis.index()].z + 0.4, "{name}");
+        assert!(first[Joint::Pelvis.index()].z > first[Joint::LeftKnee.index()].z + 0.2, "{name}");
+        // Left is left: facing +y (yaw 0), the left hip is at −x of the right one.
+        assert!(first[Joint::LeftHip.index()].x < first[Joint::RightHip.index()].x, "{name}");
+        assert_eq!(human.skeleton, Body::new(report.stature).skeleton(), "{name}: radii from the stature");
+    }
+}
+
+#[test]
+fn the_mocapbank_clip_sits_down_for_about_seven_seconds() {
+    let (human, _) = import_one(&clip("mocapbank_sit.bvh"), &placed_in_a_big_room());
+    let sits: Vec<_> = human.actions.iter().filter(|s| s.action == Action::Sit).collect();
+    assert_eq!(sits.len(), 1, "{:?}", human.actions);
+    // By hand (pelvis height and thigh slope over the clip): seated from about 4.5 s to 11.3 s.
+    assert!((125..=145).contains(&sits[0].start) && (330..=350).contains(&sits[0].end), "{:?}", sits[0]);
+    assert!(human.actions.iter().all(|s| s.action != Action::Lie));
+}
+
+#[test]
+fn placement_puts_the_first_pelvis_and_facing_where_asked() {
+    let mut opts = ImportOptions::new(RoomType::Bedroom, floor(5.0, 4.0));
+    opts.places = vec![Some(Placement { at: DVec2::new(2.0, 1.5), yaw_degrees: 90.0 })];
+    let (human, _) = import_one(&clip("freebvh_walk.bvh"), &opts);
+    let first = &body_frames(&human).unwrap()[0];
+    let pelvis = first[Joint::Pelvis.index()];
+    assert!(pelvis.truncate().distance(DVec2::new(2.0, 1.5)) < 1e-3, "{pelvis}");
+    // Facing yaw 90° is facing −x: the left hip is at −y of the right one, the toes ahead in −x.
+    assert!(first[Joint::LeftHip.index()].y < first[Joint::RightHip.index()].y);
+    let ahead = first[Joint::LeftToe.index()].x + first[Joint::RightToe.index()].x
+        - first[Joint::LeftAnkle.index()].x
+        - first[Joint::RightAnkle.index()].x;
+    assert!(ahead < 0.0, "{ahead}");
+}
+
+/// A motion of our own body: walk 2 m, stand, sit down on a 0.45 m seat (the turn and the sitting
+/// down unlabelled), stay, at 30 fps.
+fn own_motion() -> Human {
+    let body = Body::new(1.72);
+    let mut m = Motion::new(body, 30.0);
+    m.walk(&Polyline::new(vec![DVec2::new(1.0, 1.0), DVec2::new(3.0, 1.0)]).unwrap(), 1.2);
+    let standing = stand(&body, DVec2::new(3.0, 1.0), 0.0);
+    m.blend_to(&standing, 10);
+    m.hold(standing, 20, Action::Stand);
+    let sitting = sit(&body, DVec2::new(3.0, 1.2), 0.45, 0.0);
+    m.blend_to(&sitting, 20);
+    m.hold(sitting, 60, Action::Sit);
+    m.into_human("h0")
+}
+
+/// `frames` as SMPL's 22 body joints, in centimetres, y-up (x, z, −y), float32.
+fn as_smpl(frames: &[[DVec3; 19]]) -> Vec<f32> {
+    use Joint::*;
+    let mut out = Vec::new();
+    for p in frames {
+        let at = |j: Joint| p[j.index()];
+        // Our head is half a neck-to-head beyond SMPL's head joint: put SMPL's where that lands ours.
+        let head = at(Neck) + (at(Head) - at(Neck)) / 1.5;
+        let collar = |s: Joint| at(Neck).lerp(at(s), 0.4);
+        let smpl = [
+            at(Pelvis),
+            at(LeftHip),
+            at(RightHip),
+            at(Spine),
+            at(LeftKnee),
+            at(RightKnee),
+            at(Chest),
+            at(LeftAnkle),
+            at(RightAnkle),
+            at(Chest).lerp(at(Neck), 0.5),
+            at(LeftToe),
+            at(RightToe),
+            at(Neck),
+            collar(LeftShoulder),
+            collar(RightShoulder),
+            head,
+            at(LeftShoulder),
+            at(RightShoulder),
+            at(LeftElbow),
+            at(RightElbow),
+            at(LeftWrist),
+            at(RightWrist),
+        ];
+        for q in smpl {
+            out.extend([q.x * 100.0, q.z * 100.0, -q.y * 100.0].map(|v| v as f32));
+        }
+    }
+    out
+}
+
+fn write_npz(path: &Path, values: &[f32], frames: usize, joints: usize, names: Option<&[&str]>, fps: Option<f64>) {
+    let mut npz = npyz::npz::NpzWriter::create(path).unwrap();
+    let shape = [frames as u64, joints as u64, 3];
+    let mut w =
+        npz.array::<f32>("joints", Default::default()).unwrap().default_dtype().shape(&shape).begin_nd().unwrap();
+    w.extend(values.iter().copied()).unwrap();
+    w.finish().unwrap();
+    if let Some(names) = names {
+        let dtype = npyz::DType::Plain("<U16".parse().unwrap());
+        let mut w = npz
+            .array::<String>("names", Default::default())
+            .unwrap()
+            .dtype(dtype)
+            .shape(&[names.len() as u64])
+            .begin_nd()
+            .unwrap();
+        w.extend(names.iter().map(|n| n.to_string())).unwrap();
+        w.finish().unwrap();
+    }
+    if let Some(fps) = fps {
+        let mut w = npz.array::<f64>("fps", Default::default()).unwrap().default_dtype().shape(&[]).begin_nd().unwrap();
+        w.push(&fps).unwrap();
+        w.finish().unwrap();
+    }
+}
+
+#[test]
+fn our_own_motion_as_a_smpl_array_in_centimetres_y_up_comes_back_as_it_was() {
+    let original = own_motion();
+    let frames = body_frames(&original).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let npz = dir.path().join("own.npz");
+    write_npz(&npz, &as_smpl(&frames), frames.len(), 22, None, Some(30.0));
+    let opts = ImportOptions::new(RoomType::Bedroom, floor(5.0, 4.0));
+    let (human, report) = import_one(&npz, &opts);
+    assert_eq!((report.rig, report.scale, report.y_up), ("SMPL", 0.01, true));
+    assert!((report.stature - 1.72).abs() < 0.02, "{}", report.stature);
+    let back = body_frames(&human).unwrap();
+    assert_eq!(back.len(), frames.len());
+    // Every joint but the spine and chest (points along the trunk by our proportions) comes back
+    // within float32's and the file's rounding.
+    let trunk = [Joint::Spine.index(), Joint::Chest.index()];
+    for (f, (a, b)) in frames.iter().zip(&back).enumerate() {
+        for j in (0..19).filter(|j| !trunk.contains(j)) {
+            assert!(a[j].distance(b[j]) < 5e-4, "frame {f} joint {j}: {} vs {}", a[j], b[j]);
+        }
+        for j in trunk {
+            assert!(a[j].distance(b[j]) < 0.03, "frame {f} joint {j}: {} vs {}", a[j], b[j]);
+        }
+    }
+    // The labels agree with the motion's own on at least 95 % of its labelled frames.
+    let labels = label_frames(&back, 30.0, measured_stature(&back), &opts.labels);
+    let own: Vec<(usize, Action)> =
+        original.actions.iter().flat_map(|s| (s.start..s.end).map(move |f| (f, s.action))).collect();
+    let agree = own.iter().filter(|(f, a)| labels[*f] == *a).count();
+    assert!(agree as f64 >= 0.95 * own.len() as f64, "{agree} of {} frames: {labels:?}", own.len());
+    // The same array named, as .npy (fps from --source-fps), and with the names given: the same.
+    let named = dir.path().join("named.npz");
+    write_npz(&named, &as_smpl(&frames), frames.len(), 22, Some(&shade_sim::motion::npy::SMPL_BODY_JOINTS), Some(30.0));
+    assert_eq!(import_one(&named, &opts).0, human);
+    let npy = dir.path().join("own.npy");
+    let mut w = npyz::WriteOptions::new()
+        .default_dtype()
+        .shape(&[frames.len() as u64, 22, 3])
+        .writer(std::io::BufWriter::new(std::fs::File::create(&npy).unwrap()))
+        .begin_nd()
+        .unwrap();
+    w.extend(as_smpl(&frames)).unwrap();
+    w.finish().unwrap();
+    assert_eq!(import_one(&npy, &opts).0, human);
+}
+
+#[test]
+fn given_spans_override_the_labels_and_resampling_keeps_the_duration() {
+    let mut opts = placed_in_a_big_room();
+    opts.fps = 10.0;
+    opts.actions = vec![vec![shade_sim::scene::ActionSpan { start: 0, end: 5, action: Action::Touch }]];
+    let (human, report) = import_one(&clip("mocapbank_sit.bvh"), &opts);
+    // 451 frames at 30 fps are 15 s: 151 frames at 10 fps.
+    assert_eq!(report.frames, (451, 151));
+    assert_eq!(human.fps, 10.0);
+    assert_eq!((human.actions[0].start, human.actions[0].end, human.actions[0].action), (0, 5, Action::Touch));
+}
+
+#[test]
+fn import_motion_command_writes_an_input_that_generate_takes() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("input.json");
+    let o = shade_sim(&[
+        "import-motion",
+        clip("mocapbank_sit.bvh").to_str().unwrap(),
+        clip("freebvh_walk.bvh").to_str().unwrap(),
+        "--room",
+        "living",
+        "--floor",
+        "6x5",
+        "--place",
+        "3,3,180",
+        "--place",
+        "1,1,-90",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let scene = Scene::load(&out).unwrap();
+    assert_eq!(scene.humans.len(), 2);
+    assert!(scene.objects.is_empty());
+    let gen_dir = dir.path().join("gen");
+    let o = shade_sim(&["-q", "generate", "--input", out.to_str().unwrap(), "--out", gen_dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let layout = Scene::load(gen_dir.join("input_0.json")).unwrap();
+    assert!(!layout.objects.is_empty());
+    assert_eq!(layout.humans, scene.humans);
+}
+
+#[test]
+fn a_clip_that_leaves_the_floor_plan_is_an_error_naming_the_frame() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("input.json");
+    // The walk goes about 1.5 m forward: from 0.5 m before the wall, it leaves the room.
+    let o = shade_sim(&[
+        "import-motion",
+        clip("freebvh_walk.bvh").to_str().unwrap(),
+        "--room",
+        "bedroom",
+        "--floor",
+        "4x4",
+        "--place",
+        "2,3.5,0",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.starts_with("error: ")
+            && err.contains("freebvh_walk.bvh: frame ")
+            && err.contains("outside the floor plan"),
+        "{err}"
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(!out.exists());
+}
+
+#[test]
+fn bad_motion_files_are_one_line_and_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let good = std::fs::read_to_string(clip("freebvh_walk.bvh")).unwrap();
+    let motion_at = good.find("MOTION").unwrap();
+    let first_row = good[motion_at..].lines().nth(3).unwrap().to_string();
+    let fewer: String = first_row.split_whitespace().skip(1).collect::<Vec<_>>().join(" ");
+    let nan = first_row.replacen(first_row.split_whitespace().nth(4).unwrap(), "nan", 1);
+    let cases: Vec<(&str, Vec<u8>, &str)> = vec![
+        (
+            "truncated.bvh",
+            good.as_bytes()[..good[..good.len() * 2 / 3].rfind('\n').unwrap() + 1].to_vec(),
+            "the file ends after",
+        ),
+        ("cut.bvh", good.as_bytes()[..good.len() * 2 / 3].to_vec(), "values where the hierarchy has"),
+        ("channels.bvh", good.replacen(&first_row, &fewer, 1).into_bytes(), "values where the hierarchy has"),
+        ("nan.bvh", good.replacen(&first_row, &nan, 1).into_bytes(), "is not a finite number"),
+        ("zero.bvh", good.replace("Frames: 69", "Frames: 0").into_bytes(), "the frame count must be"),
+        ("binary.bvh", vec![0xff, 0xfe, 0x00, 0x41], "not a text file"),
+        ("empty.bvh", Vec::new(), "the file ends where `HIERARCHY` was expected"),
+        ("clip.fbx", b"Kaydara FBX Binary".to_vec(), "unknown motion format `.fbx`"),
+        ("garbage.npz", b"PK\x03\x04 not really".to_vec(), "not a .npz archive"),
+        ("garbage.npy", b"\x93NUMPY\x01\x00".to_vec(), "not a .npy array"),
+    ];
+    let mut arrays: Vec<(&str, &str)> = Vec::new();
+    for (name, bytes, _) in &cases {
+        std::fs::write(dir.path().join(name), bytes).unwrap();
+    }
+    // Joint arrays: 7 unnamed joints (an unknown rig), and positions of the wrong shape.
+    write_npz(&dir.path().join("seven.npz"), &[0.0; 2 * 7 * 3], 2, 7, None, None);
+    arrays.push(("seven.npz", "unknown rig: 7 joints without names"));
+    let mut npz = npyz::npz::NpzWriter::create(dir.path().join("flat.npz")).unwrap();
+    let mut w =
+        npz.array::<f32>("joints", Default::default()).unwrap().default_dtype().shape(&[4, 22, 2]).begin_nd().unwrap();
+    w.extend(vec![0.0f32; 4 * 22 * 2]).unwrap();
+    w.finish().unwrap();
+    drop(npz);
+    arrays.push(("flat.npz", "has shape [4, 22, 2]; joint positions are frames × joints × 3"));
+    let all = cases.iter().map(|(n, _, want)| (*n, *want)).chain(arrays).chain([("missing.bvh", "No such file")]);
+    for (name, want) in all {
+        let out = dir.path().join(format!("{name}.json"));
+        let file = dir.path().join(name);
+        let o = shade_sim(&[
+            "import-motion",
+            file.to_str().unwrap(),
+            "--room",
+            "bedroom",
+            "--floor",
+            "5x4",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{name}: {err}");
+        assert!(err.starts_with(&format!("error: {}: ", file.display())) && err.contains(want), "{name}: {err}");
+        assert_eq!(err.lines().count(), 1, "{name}: {err}");
+        assert!(!out.exists(), "{name}");
+    }
+}
+
+#[test]
+fn labels_agree_with_the_hand_built_and_example_motions() {
+    let mut per_action = std::collections::BTreeMap::<Action, (usize, usize)>::new();
+    for folder in ["scenes/examples", "tests/inputs"] {
+        for file in super::json_files(folder) {
+            let scene = Scene::load(&file).unwrap();
+            for h in &scene.humans {
+                let frames = body_frames(h).unwrap();
+                let labels = label_frames(&frames, h.fps, measured_stature(&frames), &Default::default());
+                for s in &h.actions {
+                    let e = per_action.entry(s.action).or_default();
+                    e.0 += (s.start..s.end).filter(|&f| labels[f] == s.action).count();
+                    e.1 += s.end - s.start;
+                }
+            }
+        }
+    }
+    let (right, all) = per_action.values().fold((0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+    assert!(right as f64 >= 0.95 * all as f64, "{right} of {all}: {per_action:?}");
+    for (action, (right, all)) in &per_action {
+        assert!(*right as f64 >= 0.9 * *all as f64, "{action:?}: {right} of {all}");
+    }
+    assert_eq!(per_action.len(), 5, "every action is tested: {per_action:?}");
+}
+
+/// The Python `mujoco` package loads the MJCF of an imported clip and, at every keyframe, puts
+/// each bone's capsule where the scene has the bone: its middle at the middle of its joints, its
+/// axis along them.
+#[cfg(feature = "mujoco")]
+#[test]
+fn an_imported_clip_replays_in_its_mjcf_with_the_scene_s_bones() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("input.json");
+    let (scene, _) = import_motion(&[clip("mocapbank_sit.bvh")], &placed_in_a_big_room()).unwrap();
+    scene.save(&input).unwrap();
+    let xml = dir.path().join("input.xml");
+    let o = shade_sim(&["-q", "export", input.to_str().unwrap(), "--format", "mjcf", "--out", xml.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let script = r#"
+import sys, json, mujoco, numpy as np
+m = mujoco.MjModel.from_xml_path(sys.argv[1])
+d = mujoco.MjData(m)
+h = json.load(open(sys.argv[2]))["humans"][0]
+worst_mid = worst_axis = 0.0
+for k, frame in enumerate(h["frames"]):
+    mujoco.mj_resetDataKeyframe(m, d, k)
+    mujoco.mj_forward(m, d)
+    for bone in h["skeleton"]["bones"]:
+        a, b = np.array(frame[bone["a"]]), np.array(frame[bone["b"]])
+        name = "h0_%s-%s" % (h["skeleton"]["joints"][bone["a"]], h["skeleton"]["joints"][bone["b"]])
+        body = m.body(name).id
+        mid, axis = d.xpos[body], d.xmat[body].reshape(3, 3)[:, 2]
+        worst_mid = max(worst_mid, np.linalg.norm(mid - (a + b) / 2))
+        worst_axis = max(worst_axis, np.degrees(np.arccos(min(1.0, abs(axis @ (b - a) / np.linalg.norm(b - a))))))
+print(m.nkey, worst_mid, worst_axis)
+assert m.nkey == len(h["frames"])
+assert worst_mid < 2e-4 and worst_axis < 0.1, (worst_mid, worst_axis)
+"#;
+    super::export::python(".venv-mujoco", script, &[&xml, &input]);
+}
