@@ -10,7 +10,9 @@
 //! standing, about 0 on a chair); **walk** where the pelvis moves faster than `walk_speed` over
 //! `speed_window`; **touch** where a wrist is `touch_reach` of the stature or more from the
 //! chest, horizontally, or above the shoulders, and slower than `touch_still`; **stand**
-//! otherwise. Then a majority vote over `smooth` seconds, and spans shorter than `min_span`
+//! otherwise. Sitting and lying also need the pelvis settled: moving up or down slower than
+//! `settle_speed` (a person sitting down is not yet supported where they will sit). Then a
+//! majority vote over `smooth` seconds, and spans shorter than `min_span`
 //! joined to the span before them. It does not know what the person touches or sits on: that is
 //! the generator's job.
 
@@ -33,6 +35,8 @@ pub struct LabelConfig {
     pub sit_pelvis: f64,
     /// Largest thigh slope (drop over length) of a sitter. Default 0.6.
     pub sit_thigh: f64,
+    /// Vertical pelvis speed (m/s) below which a sitter or lier has settled. Default 0.15.
+    pub settle_speed: f64,
     /// Pelvis speed (m/s, horizontal) above which a person walks. Default 0.3.
     pub walk_speed: f64,
     /// Seconds over which speeds are measured (centred). Default 0.4.
@@ -56,6 +60,7 @@ impl Default for LabelConfig {
             lie_ankles: 0.15,
             sit_pelvis: 0.5,
             sit_thigh: 0.6,
+            settle_speed: 0.15,
             walk_speed: 0.3,
             speed_window: 0.4,
             touch_reach: 0.2,
@@ -73,13 +78,24 @@ const ACTIONS: [Action; 5] = [Action::Walk, Action::Stand, Action::Sit, Action::
 pub fn label_frames(frames: &[[DVec3; 19]], fps: f64, stature: f64, cfg: &LabelConfig) -> Vec<Action> {
     let n = frames.len();
     let half = ((cfg.speed_window * fps * 0.5).round() as usize).max(1);
-    let speed = |f: usize, joint: Joint, horizontal: bool| -> f64 {
+    /// Which part of a joint's displacement a speed measures.
+    #[derive(Clone, Copy)]
+    enum Along {
+        All,
+        Horizontal,
+        Vertical,
+    }
+    let speed = |f: usize, joint: Joint, along: Along| -> f64 {
         let (a, b) = (f.saturating_sub(half), (f + half).min(n - 1));
         if a == b {
             return 0.0;
         }
         let d = frames[b][joint.index()] - frames[a][joint.index()];
-        let d = if horizontal { d.truncate().length() } else { d.length() };
+        let d = match along {
+            Along::All => d.length(),
+            Along::Horizontal => d.truncate().length(),
+            Along::Vertical => d.z.abs(),
+        };
         d * fps / (b - a) as f64
     };
     let raw: Vec<Action> = (0..n)
@@ -94,13 +110,14 @@ pub fn label_frames(frames: &[[DVec3; 19]], fps: f64, stature: f64, cfg: &LabelC
             let ankles = (at(Joint::Pelvis).z - at(Joint::LeftAnkle).z.min(at(Joint::RightAnkle).z)) / stature;
             let reach = |wrist: Joint, shoulder: Joint| {
                 let out = at(wrist).truncate().distance(at(Joint::Chest).truncate()) >= cfg.touch_reach * stature;
-                (out || at(wrist).z > at(shoulder).z) && speed(f, wrist, false) < cfg.touch_still
+                (out || at(wrist).z > at(shoulder).z) && speed(f, wrist, Along::All) < cfg.touch_still
             };
-            if incline > cfg.lie_incline && pelvis < cfg.lie_pelvis && ankles < cfg.lie_ankles {
+            let settled = speed(f, Joint::Pelvis, Along::Vertical) < cfg.settle_speed;
+            if settled && incline > cfg.lie_incline && pelvis < cfg.lie_pelvis && ankles < cfg.lie_ankles {
                 Action::Lie
-            } else if pelvis < cfg.sit_pelvis && slope < cfg.sit_thigh {
+            } else if settled && pelvis < cfg.sit_pelvis && slope < cfg.sit_thigh {
                 Action::Sit
-            } else if speed(f, Joint::Pelvis, true) > cfg.walk_speed {
+            } else if speed(f, Joint::Pelvis, Along::Horizontal) > cfg.walk_speed {
                 Action::Walk
             } else if reach(Joint::LeftWrist, Joint::LeftShoulder) || reach(Joint::RightWrist, Joint::RightShoulder) {
                 Action::Touch

@@ -207,10 +207,7 @@ pub fn import_motion(files: &[PathBuf], opts: &ImportOptions) -> Result<(Scene, 
     let mut reports = Vec::new();
     for (i, file) in files.iter().enumerate() {
         let clip = read_motion(file, opts.source_fps)?;
-        let place = opts.places.get(i).copied().flatten();
-        let given = opts.actions.get(i).map_or(&[][..], Vec::as_slice);
-        let (human, report) =
-            human_of(&clip, i, place, given, &scene, opts).map_err(|m| MotionError::invalid(file, m))?;
+        let (human, report) = import_clip(&clip, i, opts).map_err(|m| MotionError::invalid(file, m))?;
         scene.humans.push(human);
         reports.push(ImportReport { file: file.clone(), ..report });
     }
@@ -221,15 +218,11 @@ pub fn import_motion(files: &[PathBuf], opts: &ImportOptions) -> Result<(Scene, 
     Ok((scene, reports))
 }
 
-/// One clip as the human `h{i}` of `scene`.
-fn human_of(
-    clip: &Clip,
-    i: usize,
-    place: Option<Placement>,
-    given: &[ActionSpan],
-    scene: &Scene,
-    opts: &ImportOptions,
-) -> Result<(Human, ImportReport), String> {
+/// One clip as the human `h{i}` of an input (`opts.places[i]` and `opts.actions[i]` apply to
+/// it); the error is the message without the file.
+pub fn import_clip(clip: &Clip, i: usize, opts: &ImportOptions) -> Result<(Human, ImportReport), String> {
+    let place = opts.places.get(i).copied().flatten();
+    let given = opts.actions.get(i).map_or(&[][..], Vec::as_slice);
     let y_up = match opts.up {
         UpAxis::Y => true,
         UpAxis::Z => false,
@@ -267,7 +260,7 @@ fn human_of(
     let mut frames = resample(&frames, clip.fps, opts.fps);
     let lift = body.foot_radius() - frames.iter().map(toe).fold(f64::MAX, f64::min);
     frames.iter_mut().flatten().for_each(|p| p.z += lift);
-    let polygon = scene.floor_plan.polygon();
+    let polygon = opts.floor.polygon();
     for (f, pose) in frames.iter().enumerate() {
         for joint in [Joint::Pelvis, Joint::LeftAnkle, Joint::RightAnkle] {
             let p = pose[joint.index()];
