@@ -153,7 +153,7 @@ fn contact_box(human: &Human, span: &ActionSpan) -> Option<ContactBox> {
             let joints: Vec<usize> = names.iter().filter_map(|n| s.joint(n)).collect();
             let r = radius_between(s, &joints).unwrap_or(0.07);
             // Buttocks and the back of the thighs rest on the seat; the knees overhang its edge,
-            // so a third of each thigh counts.
+            // so a third of each resting thigh counts.
             let (Some(lh), Some(lk), Some(rh), Some(rk), Some(p)) = (
                 s.joint("left_hip"),
                 s.joint("left_knee"),
@@ -165,7 +165,13 @@ fn contact_box(human: &Human, span: &ActionSpan) -> Option<ContactBox> {
             };
             let points = |f: usize| {
                 let at = |j| human.joint_at(f, j);
-                vec![at(p), at(lh), at(rh), at(lh).lerp(at(lk), SEATED_THIGH), at(rh).lerp(at(rk), SEATED_THIGH)]
+                let resting = |hip: usize, knee: usize| {
+                    let (h, k) = (at(hip), at(knee));
+                    ((h.z - k.z) < RESTING_THIGH_SLOPE * h.distance(k)).then(|| h.lerp(k, SEATED_THIGH))
+                };
+                let mut out = vec![at(p), at(lh), at(rh)];
+                out.extend(resting(lh, lk).into_iter().chain(resting(rh, rk)));
+                out
             };
             support_box_of(span, &points, r, yaw)
         }
@@ -184,6 +190,10 @@ fn contact_box(human: &Human, span: &ActionSpan) -> Option<ContactBox> {
 
 /// Fraction of the thigh (hip → knee) that rests on a seat.
 pub const SEATED_THIGH: f64 = 0.35;
+/// A thigh dropping more than this over its length (37°) does not rest on the seat: a real sitter
+/// with one knee on the floor or a leg stretched down is held by the buttocks and the other thigh
+/// (the synthetic sitters' thighs are level: at most 0.004).
+pub const RESTING_THIGH_SLOPE: f64 = 0.6;
 
 /// The support volume under `points(frame)` (each inflated by `r`) over the span's frames.
 fn support_box_of(span: &ActionSpan, points: &dyn Fn(usize) -> Vec<DVec3>, r: f64, yaw: f64) -> OBox {

@@ -43,11 +43,33 @@ pub const SMPL_BODY_JOINTS: [&str; 22] = [
 /// Joint counts read as SMPL-family arrays when no names come with them.
 const SMPL_SIZES: [usize; 4] = [22, 24, 52, 55];
 
+/// Most bytes one array of an `.npz` may hold once decompressed: the most positions a clip may
+/// have, as float64, and its header.
+const MAX_ARRAY_BYTES: u64 = MAX_POSITIONS as u64 * 3 * 8 + (1 << 16);
+
 /// Reads a `.npy` file's bytes; `fps` is the clip's frame rate (a `.npy` has none).
 pub fn read_npy(bytes: &[u8], fps: f64) -> Result<Clip, String> {
-    let npy = NpyFile::new(bytes).map_err(|e| format!("not a .npy array: {e}"))?;
-    let (frames, joints) = positions(npy, "the array")?;
+    let (frames, joints) = positions(npy_file(bytes)?, "the array")?;
     clip(frames, joints, None, fps)
+}
+
+/// An array's bytes as an `NpyFile`, once its header is known to lie within them (the header's
+/// length is read from the file and `npyz` allocates it before reading: a corrupt one asked for
+/// 4 GB — found by the `motion` fuzz target).
+fn npy_file(bytes: &[u8]) -> Result<NpyFile<&[u8]>, String> {
+    let not = |what: &str| format!("not a .npy array: {what}");
+    if bytes.len() < 10 || &bytes[..6] != b"\x93NUMPY" {
+        return Err(not("no NUMPY magic"));
+    }
+    let (prefix, header) = match bytes[6] {
+        1 => (10, u16::from_le_bytes([bytes[8], bytes[9]]) as usize),
+        2 | 3 if bytes.len() >= 12 => (12, u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize),
+        v => return Err(not(&format!("format version {v}"))),
+    };
+    if prefix + header > bytes.len() {
+        return Err(not(&format!("its header ({header} bytes) runs past the end of the file")));
+    }
+    NpyFile::new(bytes).map_err(|e| not(&e.to_string()))
 }
 
 /// Reads a `.npz` archive's bytes; `fps` is the frame rate where the archive has none.
@@ -58,20 +80,34 @@ pub fn read_npz(bytes: &[u8], fps: f64) -> Result<Clip, String> {
     let key = pick(&["joints", "positions", "joint_positions"]).ok_or_else(|| {
         format!("no array `joints` (or `positions`, `joint_positions`) among its arrays: {}", names.join(", "))
     })?;
-    let (frames, joints) = positions(entry(&mut archive, &key)?, &format!("array `{key}`"))?;
+    let bytes = entry(&mut archive, &key)?;
+    let (frames, joints) = positions(array_file(&bytes, &key)?, &format!("array `{key}`"))?;
     let joint_names = match pick(&["names", "joint_names"]) {
-        Some(k) => Some(strings(entry(&mut archive, &k)?, &k)?),
+        Some(k) => Some(strings(array_file(&entry(&mut archive, &k)?, &k)?, &k)?),
         None => None,
     };
     let fps = match pick(&["fps", "mocap_framerate"]) {
-        Some(k) => scalar(entry(&mut archive, &k)?, &k)?,
+        Some(k) => scalar(array_file(&entry(&mut archive, &k)?, &k)?, &k)?,
         None => fps,
     };
     clip(frames, joints, joint_names, fps)
 }
 
-fn entry<'a>(archive: &'a mut NpzArchive<Cursor<&[u8]>>, name: &str) -> Result<NpyFile<impl Read + 'a>, String> {
-    archive.by_name(name).map_err(|e| format!("array `{name}`: {e}"))?.ok_or_else(|| format!("no array `{name}`"))
+/// The `.npz` array `name`'s bytes as an `NpyFile`.
+fn array_file<'a>(bytes: &'a [u8], name: &str) -> Result<NpyFile<&'a [u8]>, String> {
+    npy_file(bytes).map_err(|e| format!("array `{name}`: {e}"))
+}
+
+/// The bytes of the array `name` (decompressed, at most [`MAX_ARRAY_BYTES`]).
+fn entry(archive: &mut NpzArchive<Cursor<&[u8]>>, name: &str) -> Result<Vec<u8>, String> {
+    let file = npyz::npz::file_name_from_array_name(name);
+    let entry = archive.zip_archive().by_name(&file).map_err(|e| format!("array `{name}`: {e}"))?;
+    let mut bytes = Vec::new();
+    entry.take(MAX_ARRAY_BYTES + 1).read_to_end(&mut bytes).map_err(|e| format!("array `{name}`: {e}"))?;
+    if bytes.len() as u64 > MAX_ARRAY_BYTES {
+        return Err(format!("array `{name}`: more than {MAX_ARRAY_BYTES} bytes"));
+    }
+    Ok(bytes)
 }
 
 /// The frames (T × J positions) of a T × J × 3 float array.

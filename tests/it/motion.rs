@@ -313,6 +313,12 @@ fn bad_motion_files_are_one_line_and_exit_2() {
         ("clip.fbx", b"Kaydara FBX Binary".to_vec(), "unknown motion format `.fbx`"),
         ("garbage.npz", b"PK\x03\x04 not really".to_vec(), "not a .npz archive"),
         ("garbage.npy", b"\x93NUMPY\x01\x00".to_vec(), "not a .npy array"),
+        // A header length of 4 GB: found by the `motion` fuzz target, which npyz allocated before reading.
+        (
+            "huge_header.npy",
+            [&b"\x93NUMPY\x03\x00\xff\xff\xff\xff"[..], &[b' '; 64]].concat(),
+            "runs past the end of the file",
+        ),
     ];
     let mut arrays: Vec<(&str, &str)> = Vec::new();
     for (name, bytes, _) in &cases {
