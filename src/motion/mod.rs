@@ -212,7 +212,10 @@ pub fn import_motion(files: &[PathBuf], opts: &ImportOptions) -> Result<(Scene, 
         reports.push(ImportReport { file: file.clone(), ..report });
     }
     if let Some(problem) = validate(&scene).into_iter().next() {
-        let file = files.first().cloned().unwrap_or_default();
+        // The file of the human at fault (`humans[k]…`), else the first (a floor plan's problem,
+        // or the frames of all humans together).
+        let human = problem.path.strip_prefix("humans[").and_then(|r| r.split(']').next()?.parse::<usize>().ok());
+        let file = files.get(human.unwrap_or(0)).cloned().unwrap_or_default();
         return Err(MotionError::invalid(file, format!("the input it makes is not valid: {problem}")));
     }
     Ok((scene, reports))
