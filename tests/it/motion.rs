@@ -290,6 +290,20 @@ fn a_clip_that_leaves_the_floor_plan_is_an_error_naming_the_frame() {
     assert!(!out.exists());
 }
 
+/// A `.npy` whose dtype is a list nested `depth` deep.
+fn deep_header(depth: usize) -> Vec<u8> {
+    let dict = format!(
+        "{{'descr': {}'<f4'{}, 'fortran_order': False, 'shape': (2, 22, 3), }}\n",
+        "[".repeat(depth),
+        "]".repeat(depth)
+    );
+    let mut out = b"\x93NUMPY\x01\x00".to_vec();
+    out.extend((dict.len() as u16).to_le_bytes());
+    out.extend(dict.as_bytes());
+    out.extend([0u8; 528]);
+    out
+}
+
 #[test]
 fn bad_motion_files_are_one_line_and_exit_2() {
     let dir = tempfile::tempdir().unwrap();
