@@ -327,6 +327,8 @@ fn bad_motion_files_are_one_line_and_exit_2() {
         ("clip.fbx", b"Kaydara FBX Binary".to_vec(), "unknown motion format `.fbx`"),
         ("garbage.npz", b"PK\x03\x04 not really".to_vec(), "not a .npz archive"),
         ("garbage.npy", b"\x93NUMPY\x01\x00".to_vec(), "not a .npy array"),
+        // Lists nested 20 deep in the header: npyz's parser took seconds (2^depth); found by fuzzing.
+        ("deep_header.npy", deep_header(20), "nests brackets more than 4 deep"),
         // A header length of 4 GB: found by the `motion` fuzz target, which npyz allocated before reading.
         (
             "huge_header.npy",
