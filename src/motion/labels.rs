@@ -9,8 +9,9 @@
 //! `sit_pelvis` and the thighs slope less than `sit_thigh` (their drop over their length: 1
 //! standing, about 0 on a chair); **walk** where the pelvis moves faster than `walk_speed` over
 //! `speed_window`; **touch** where a wrist is `touch_reach` of the stature or more from the
-//! chest, horizontally, or above the shoulders, and slower than `touch_still`; **stand**
-//! otherwise. Sitting and lying also need the pelvis settled: moving up or down slower than
+//! chest, horizontally, or above the shoulders, and slower than `touch_still`, unless both arms
+//! are spread sideways (each wrist `spread_arms` of its arm's length or more out along the
+//! shoulders: the T- or A-pose many captures start in); **stand** otherwise. Sitting and lying also need the pelvis settled: moving up or down slower than
 //! `settle_speed` (a person sitting down is not yet supported where they will sit). Then a
 //! majority vote over `smooth` seconds, and spans shorter than `min_span`
 //! joined to the span before them. It does not know what the person touches or sits on: that is
@@ -46,6 +47,10 @@ pub struct LabelConfig {
     pub touch_reach: f64,
     /// Wrist speed (m/s) below which a reaching hand holds still. Default 0.3.
     pub touch_still: f64,
+    /// How far out along the shoulder line (fraction of the arm's length) both wrists are in a
+    /// spread-arms pose, which is not a touch. Default 0.6 (the val split's touchers: at most one
+    /// arm out sideways).
+    pub spread_arms: f64,
     /// Seconds of the majority vote. Default 0.5.
     pub smooth: f64,
     /// Shortest span (s); shorter ones join the span before them. Default 0.3.
@@ -65,6 +70,7 @@ impl Default for LabelConfig {
             speed_window: 0.4,
             touch_reach: 0.2,
             touch_still: 0.3,
+            spread_arms: 0.6,
             smooth: 0.5,
             min_span: 0.3,
         }
@@ -98,34 +104,46 @@ pub fn label_frames(frames: &[[DVec3; 19]], fps: f64, stature: f64, cfg: &LabelC
         };
         d * fps / (b - a) as f64
     };
-    let raw: Vec<Action> = (0..n)
-        .map(|f| {
-            let p = &frames[f];
-            let at = |j: Joint| p[j.index()];
-            let trunk = at(Joint::Neck) - at(Joint::Pelvis);
-            let incline = trunk.angle_between(DVec3::Z).to_degrees();
-            let pelvis = at(Joint::Pelvis).z / stature;
-            let drop = |a: Joint, b: Joint| (at(a).z - at(b).z) / at(a).distance(at(b)).max(1e-6);
-            let slope = 0.5 * (drop(Joint::LeftHip, Joint::LeftKnee) + drop(Joint::RightHip, Joint::RightKnee));
-            let ankles = (at(Joint::Pelvis).z - at(Joint::LeftAnkle).z.min(at(Joint::RightAnkle).z)) / stature;
-            let reach = |wrist: Joint, shoulder: Joint| {
-                let out = at(wrist).truncate().distance(at(Joint::Chest).truncate()) >= cfg.touch_reach * stature;
-                (out || at(wrist).z > at(shoulder).z) && speed(f, wrist, Along::All) < cfg.touch_still
-            };
-            let settled = speed(f, Joint::Pelvis, Along::Vertical) < cfg.settle_speed;
-            if settled && incline > cfg.lie_incline && pelvis < cfg.lie_pelvis && ankles < cfg.lie_ankles {
-                Action::Lie
-            } else if settled && pelvis < cfg.sit_pelvis && slope < cfg.sit_thigh {
-                Action::Sit
-            } else if speed(f, Joint::Pelvis, Along::Horizontal) > cfg.walk_speed {
-                Action::Walk
-            } else if reach(Joint::LeftWrist, Joint::LeftShoulder) || reach(Joint::RightWrist, Joint::RightShoulder) {
-                Action::Touch
-            } else {
-                Action::Stand
-            }
-        })
-        .collect();
+    let raw: Vec<Action> =
+        (0..n)
+            .map(|f| {
+                let p = &frames[f];
+                let at = |j: Joint| p[j.index()];
+                let trunk = at(Joint::Neck) - at(Joint::Pelvis);
+                let incline = trunk.angle_between(DVec3::Z).to_degrees();
+                let pelvis = at(Joint::Pelvis).z / stature;
+                let drop = |a: Joint, b: Joint| (at(a).z - at(b).z) / at(a).distance(at(b)).max(1e-6);
+                let slope = 0.5 * (drop(Joint::LeftHip, Joint::LeftKnee) + drop(Joint::RightHip, Joint::RightKnee));
+                let ankles = (at(Joint::Pelvis).z - at(Joint::LeftAnkle).z.min(at(Joint::RightAnkle).z)) / stature;
+                let reach = |wrist: Joint, shoulder: Joint| {
+                    let out = at(wrist).truncate().distance(at(Joint::Chest).truncate()) >= cfg.touch_reach * stature;
+                    (out || at(wrist).z > at(shoulder).z) && speed(f, wrist, Along::All) < cfg.touch_still
+                };
+                // How far out sideways a wrist is, along its shoulder's line from the other shoulder.
+                let out = |shoulder: Joint, other: Joint, elbow: Joint, wrist: Joint| {
+                    let line = (at(shoulder) - at(other)).truncate().normalize_or_zero();
+                    let arm = at(shoulder).distance(at(elbow)) + at(elbow).distance(at(wrist));
+                    (at(wrist) - at(shoulder)).truncate().dot(line) / arm.max(1e-6)
+                };
+                let spread = out(Joint::LeftShoulder, Joint::RightShoulder, Joint::LeftElbow, Joint::LeftWrist)
+                    .min(out(Joint::RightShoulder, Joint::LeftShoulder, Joint::RightElbow, Joint::RightWrist))
+                    >= cfg.spread_arms;
+                let settled = speed(f, Joint::Pelvis, Along::Vertical) < cfg.settle_speed;
+                if settled && incline > cfg.lie_incline && pelvis < cfg.lie_pelvis && ankles < cfg.lie_ankles {
+                    Action::Lie
+                } else if settled && pelvis < cfg.sit_pelvis && slope < cfg.sit_thigh {
+                    Action::Sit
+                } else if speed(f, Joint::Pelvis, Along::Horizontal) > cfg.walk_speed {
+                    Action::Walk
+                } else if !spread
+                    && (reach(Joint::LeftWrist, Joint::LeftShoulder) || reach(Joint::RightWrist, Joint::RightShoulder))
+                {
+                    Action::Touch
+                } else {
+                    Action::Stand
+                }
+            })
+            .collect();
     let voted = majority(&raw, (cfg.smooth * fps * 0.5).round() as usize);
     join_short(voted, ((cfg.min_span * fps).round() as usize).max(1))
 }
@@ -175,4 +193,48 @@ pub fn runs(labels: &[Action]) -> Vec<ActionSpan> {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::human::{Body, Side, stand};
+    use glam::DVec2;
+
+    /// A standing pose of a 1.75 m body held for a second at 30 fps, its arms set by `arms`.
+    fn held(arms: impl Fn(&mut [DVec3; 19])) -> Vec<[DVec3; 19]> {
+        let mut pose = stand(&Body::default(), DVec2::ZERO, 0.0).0;
+        arms(&mut pose);
+        vec![pose; 30]
+    }
+
+    /// Puts `side`'s elbow and wrist straight out from the shoulder along `dir`.
+    fn reach(pose: &mut [DVec3; 19], side: Side, dir: DVec3) {
+        let [shoulder, elbow, wrist] = side.arm();
+        let s = pose[shoulder.index()];
+        pose[elbow.index()] = s + dir * 0.32;
+        pose[wrist.index()] = s + dir * 0.58;
+    }
+
+    #[test]
+    fn a_hand_held_out_is_a_touch_but_spread_arms_are_not() {
+        let cfg = LabelConfig::default();
+        let label = |frames: &[[DVec3; 19]]| label_frames(frames, 30.0, 1.75, &cfg);
+        assert!(label(&held(|_| {})).iter().all(|&a| a == Action::Stand));
+        // One hand forward (+y, the way a body at yaw 0 faces): a touch.
+        let forward = held(|p| reach(p, Side::Right, DVec3::Y));
+        assert!(label(&forward).iter().all(|&a| a == Action::Touch));
+        // Both arms out to the sides (a T-pose; the left is −x): standing, not touching.
+        let t_pose = held(|p| {
+            reach(p, Side::Left, -DVec3::X);
+            reach(p, Side::Right, DVec3::X);
+        });
+        assert!(label(&t_pose).iter().all(|&a| a == Action::Stand));
+        // Both hands forward (pushing a table): a touch.
+        let both = held(|p| {
+            reach(p, Side::Left, DVec3::Y);
+            reach(p, Side::Right, DVec3::Y);
+        });
+        assert!(label(&both).iter().all(|&a| a == Action::Touch));
+    }
 }

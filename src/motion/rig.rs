@@ -249,16 +249,10 @@ fn by_topology(clip: &Clip, up: DVec3) -> Result<Mapping, String> {
     // Left: where the feet point left of (up × forward).
     let forward = (first[leg_a[3]] - first[leg_a[2]]) + (first[leg_b[3]] - first[leg_b[2]]);
     let left = up.cross(forward - up * forward.dot(up));
-    let (legs, arms) = match first[leg_a[0]].dot(left) >= first[leg_b[0]].dot(left) {
-        true => (
-            [leg_a, leg_b],
-            if first[arm_a[0]].dot(left) >= first[arm_b[0]].dot(left) { [arm_a, arm_b] } else { [arm_b, arm_a] },
-        ),
-        false => (
-            [leg_b, leg_a],
-            if first[arm_a[0]].dot(left) >= first[arm_b[0]].dot(left) { [arm_a, arm_b] } else { [arm_b, arm_a] },
-        ),
-    };
+    // Each pair with the one whose first joint lies further left first.
+    let side = |j: usize| first[j].dot(left);
+    let legs = if side(leg_a[0]) >= side(leg_b[0]) { [leg_a, leg_b] } else { [leg_b, leg_a] };
+    let arms = if side(arm_a[0]) >= side(arm_b[0]) { [arm_a, arm_b] } else { [arm_b, arm_a] };
     Ok(Mapping { pelvis, neck, head, head_end, trunk, legs, arms })
 }
 
