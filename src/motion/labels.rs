@@ -9,7 +9,8 @@
 //! `sit_pelvis` and the thighs slope less than `sit_thigh` (their drop over their length: 1
 //! standing, about 0 on a chair); **walk** where the pelvis moves faster than `walk_speed` over
 //! `speed_window`; **touch** where a wrist is `touch_reach` of the stature or more from the
-//! chest, horizontally, or above the shoulders, and slower than `touch_still`, unless both arms
+//! chest, horizontally, and slower than `touch_still` (a hand raised overhead close to the body
+//! is not on a piece a layout could hold: a piece under it would hold the person too), unless both arms
 //! are spread sideways (each wrist `spread_arms` of its arm's length or more out along the
 //! shoulders: the T- or A-pose many captures start in); **stand** otherwise. Sitting and lying also need the pelvis settled: moving up or down slower than
 //! `settle_speed` (a person sitting down is not yet supported where they will sit). Then a
@@ -115,9 +116,9 @@ pub fn label_frames(frames: &[[DVec3; 19]], fps: f64, stature: f64, cfg: &LabelC
                 let drop = |a: Joint, b: Joint| (at(a).z - at(b).z) / at(a).distance(at(b)).max(1e-6);
                 let slope = 0.5 * (drop(Joint::LeftHip, Joint::LeftKnee) + drop(Joint::RightHip, Joint::RightKnee));
                 let ankles = (at(Joint::Pelvis).z - at(Joint::LeftAnkle).z.min(at(Joint::RightAnkle).z)) / stature;
-                let reach = |wrist: Joint, shoulder: Joint| {
-                    let out = at(wrist).truncate().distance(at(Joint::Chest).truncate()) >= cfg.touch_reach * stature;
-                    (out || at(wrist).z > at(shoulder).z) && speed(f, wrist, Along::All) < cfg.touch_still
+                let reach = |wrist: Joint| {
+                    at(wrist).truncate().distance(at(Joint::Chest).truncate()) >= cfg.touch_reach * stature
+                        && speed(f, wrist, Along::All) < cfg.touch_still
                 };
                 // How far out sideways a wrist is, along its shoulder's line from the other shoulder.
                 let out = |shoulder: Joint, other: Joint, elbow: Joint, wrist: Joint| {
@@ -135,9 +136,7 @@ pub fn label_frames(frames: &[[DVec3; 19]], fps: f64, stature: f64, cfg: &LabelC
                     Action::Sit
                 } else if speed(f, Joint::Pelvis, Along::Horizontal) > cfg.walk_speed {
                     Action::Walk
-                } else if !spread
-                    && (reach(Joint::LeftWrist, Joint::LeftShoulder) || reach(Joint::RightWrist, Joint::RightShoulder))
-                {
+                } else if !spread && (reach(Joint::LeftWrist) || reach(Joint::RightWrist)) {
                     Action::Touch
                 } else {
                     Action::Stand
@@ -217,7 +216,7 @@ mod tests {
     }
 
     #[test]
-    fn a_hand_held_out_is_a_touch_but_spread_arms_are_not() {
+    fn a_hand_held_out_is_a_touch_but_spread_arms_and_a_raised_hand_are_not() {
         let cfg = LabelConfig::default();
         let label = |frames: &[[DVec3; 19]]| label_frames(frames, 30.0, 1.75, &cfg);
         assert!(label(&held(|_| {})).iter().all(|&a| a == Action::Stand));
@@ -230,6 +229,10 @@ mod tests {
             reach(p, Side::Right, DVec3::X);
         });
         assert!(label(&t_pose).iter().all(|&a| a == Action::Stand));
+        // A hand raised straight up, close to the body: no piece could be under it without
+        // holding the person too, so not a touch.
+        let overhead = held(|p| reach(p, Side::Right, DVec3::Z));
+        assert!(label(&overhead).iter().all(|&a| a == Action::Stand));
         // Both hands forward (pushing a table): a touch.
         let both = held(|p| {
             reach(p, Side::Left, DVec3::Y);
