@@ -202,6 +202,16 @@ fn our_own_motion_as_a_smpl_array_in_centimetres_y_up_comes_back_as_it_was() {
         original.actions.iter().flat_map(|s| (s.start..s.end).map(move |f| (f, s.action))).collect();
     let agree = own.iter().filter(|(f, a)| labels[*f] == *a).count();
     assert!(agree as f64 >= 0.95 * own.len() as f64, "{agree} of {} frames: {labels:?}", own.len());
+    // The same motion z-up in metres: the up axis and the units are told, and it comes back the same.
+    let z_up: Vec<f32> =
+        as_smpl(&frames).chunks_exact(3).flat_map(|p| [p[0] / 100.0, -p[2] / 100.0, p[1] / 100.0]).collect();
+    let metres = dir.path().join("z_up.npz");
+    write_npz(&metres, &z_up, frames.len(), 22, None, Some(30.0));
+    let (again, report) = import_one(&metres, &opts);
+    assert_eq!((report.scale, report.y_up), (1.0, false));
+    for (a, b) in body_frames(&again).unwrap().iter().zip(&back) {
+        assert!(a.iter().zip(b).all(|(p, q)| p.distance(*q) < 5e-4));
+    }
     // The same array named, as .npy (fps from --source-fps), and with the names given: the same.
     let named = dir.path().join("named.npz");
     write_npz(&named, &as_smpl(&frames), frames.len(), 22, Some(&shade_sim::motion::npy::SMPL_BODY_JOINTS), Some(30.0));
