@@ -78,37 +78,37 @@ fn largest_motion() -> Scene {
     scene
 }
 
-fn bench_largest_floor_plan(c: &mut Criterion) {
-    let scene = largest_floor_plan();
+/// `name/read_and_validate` (the scene's JSON text read back) and `name/check_without_stability`
+/// (`checked`: the scene the check sees).
+fn bench_read_and_check(c: &mut Criterion, name: &str, scene: &Scene, checked: &Scene) {
     let text = scene.to_json();
     let origin = Path::new("largest.json");
-    c.bench_function("largest_floor_plan/read_and_validate", |b| {
+    c.bench_function(&format!("{name}/read_and_validate"), |b| {
         b.iter(|| Scene::from_json(black_box(&text), origin).unwrap())
     });
-    c.bench_function("largest_floor_plan/conditions", |b| b.iter(|| Conditions::of(black_box(&scene))));
     let cfg = CheckConfig { stability: false, ..CheckConfig::default() };
-    c.bench_function("largest_floor_plan/check_without_stability", |b| b.iter(|| check_scene(black_box(&scene), &cfg)));
+    c.bench_function(&format!("{name}/check_without_stability"), |b| b.iter(|| check_scene(black_box(checked), &cfg)));
+}
+
+fn bench_largest_floor_plan(c: &mut Criterion) {
+    let scene = largest_floor_plan();
+    bench_read_and_check(c, "largest_floor_plan", &scene, &scene);
+    c.bench_function("largest_floor_plan/conditions", |b| b.iter(|| Conditions::of(black_box(&scene))));
 }
 
 fn bench_largest_motion(c: &mut Criterion) {
     let input = largest_motion();
-    let text = input.to_json();
-    let origin = Path::new("largest_motion.json");
-    c.bench_function("largest_motion/read_and_validate", |b| {
-        b.iter(|| Scene::from_json(black_box(&text), origin).unwrap())
-    });
     let generator = Generator::new(shipped_model(RoomType::Bedroom).unwrap());
     let opts = LayoutOptions { repair: None, ..LayoutOptions::default() };
     let sample =
         || make_layouts(&generator, std::slice::from_ref(&input), &opts, &mut |_| {}).unwrap().kept[0][0].scene.clone();
     let layout = sample();
+    bench_read_and_check(c, "largest_motion", &input, &layout);
     c.bench_function("largest_motion/generate_one_sample", |b| b.iter(sample));
     let config = RepairConfig::default();
     c.bench_function("largest_motion/repair", |b| {
         b.iter(|| repair_scene(&mut black_box(layout.clone()), &config, &SimPhysics))
     });
-    let cfg = CheckConfig { stability: false, ..CheckConfig::default() };
-    c.bench_function("largest_motion/check_without_stability", |b| b.iter(|| check_scene(black_box(&layout), &cfg)));
 }
 
 criterion_group! {

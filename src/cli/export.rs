@@ -1,6 +1,6 @@
 //! `shade-sim export SCENE --format mjcf|robosuite|png|glb --out FILE [--free-furniture] [--validate]`.
 
-use super::output::{print_json, print_text};
+use super::output::{print_json, print_text, same_file};
 use super::{ExitStatus, GlobalArgs};
 use anyhow::Context;
 use clap::{Args, ValueEnum};
@@ -102,14 +102,6 @@ pub fn run(args: &ExportArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus>
 }
 
 /// `room.xml` → `room.motion.json`.
-/// Whether `a` and `b` name one existing file (through links and relative paths).
-fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
-    match (a.canonicalize(), b.canonicalize()) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => false,
-    }
-}
-
 fn motion_path(out: &std::path::Path) -> PathBuf {
     out.with_extension("motion.json")
 }

@@ -1,7 +1,7 @@
 //! `shade-sim import-motion MOTION… --room R --floor WxD|PLAN.json --out SCENE.json`: motion
 //! capture (BVH) and joint arrays (`.npy`/`.npz`) as a generation input, one human per file.
 
-use super::output::{print_json, print_text};
+use super::output::{print_json, print_text, same_file};
 use super::{ExitStatus, GlobalArgs, RoomArg};
 use anyhow::{Context, bail};
 use clap::{Args, ValueEnum};
@@ -169,11 +169,4 @@ pub fn run(args: &ImportMotionArgs, global: &GlobalArgs) -> anyhow::Result<ExitS
         print_text(&text)?;
     }
     Ok(ExitStatus::Success)
-}
-
-fn same_file(a: &Path, b: &Path) -> bool {
-    match (a.canonicalize(), b.canonicalize()) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => false,
-    }
 }

@@ -3,20 +3,24 @@
 //! trunk's inclination, the thighs' slope and the hands' reach — so that contact boxes and free
 //! floor come out right for clips nobody labelled.
 //!
-//! Per frame, in this order: **lie** where the trunk leans more than `lie_incline` from upright,
-//! the pelvis is below `lie_pelvis` of the stature and no ankle is more than `lie_ankles` below
-//! the pelvis (a sitter leaning far back in a lounge chair keeps a foot on the floor); **sit** where the pelvis is below
-//! `sit_pelvis` and the thighs slope less than `sit_thigh` (their drop over their length: 1
-//! standing, about 0 on a chair); **walk** where the pelvis moves faster than `walk_speed` over
-//! `speed_window`; **touch** where a wrist is `touch_reach` of the stature or more from the
-//! chest, horizontally, and slower than `touch_still` (a hand raised overhead close to the body
-//! is not on a piece a layout could hold: a piece under it would hold the person too), unless both arms
-//! are spread sideways (each wrist `spread_arms` of its arm's length or more out along the
-//! shoulders: the T- or A-pose many captures start in); **stand** otherwise. Sitting and lying also need the pelvis settled: moving up or down slower than
-//! `settle_speed` (a person sitting down is not yet supported where they will sit). Then a
-//! majority vote over `smooth` seconds, and spans shorter than `min_span`
-//! joined to the span before them. It does not know what the person touches or sits on: that is
-//! the generator's job.
+//! Per frame, in this order:
+//! - **lie** where the trunk leans more than `lie_incline` from upright, the pelvis is below
+//!   `lie_pelvis` of the stature and no ankle is more than `lie_ankles` below the pelvis (a sitter
+//!   leaning far back in a lounge chair keeps a foot on the floor);
+//! - **sit** where the pelvis is below `sit_pelvis` and the thighs slope less than `sit_thigh`
+//!   (their drop over their length: 1 standing, about 0 on a chair);
+//! - **walk** where the pelvis moves faster than `walk_speed` over `speed_window`;
+//! - **touch** where a wrist is `touch_reach` of the stature or more from the chest, horizontally,
+//!   and slower than `touch_still` (a hand raised overhead close to the body is not on a piece a
+//!   layout could hold: a piece under it would hold the person too), unless both arms are spread
+//!   sideways (each wrist `spread_arms` of its arm's length or more out along the shoulders: the
+//!   T- or A-pose many captures start in);
+//! - **stand** otherwise.
+//!
+//! Sitting and lying also need the pelvis settled, moving up or down slower than `settle_speed`
+//! (a person sitting down is not yet supported where they will sit). Then a majority vote over
+//! `smooth` seconds, and spans shorter than `min_span` joined to the span before them. It does not
+//! know what the person touches or sits on: that is the generator's job.
 
 use crate::human::Joint;
 use crate::scene::{Action, ActionSpan};

@@ -19,7 +19,7 @@ pub use error::MotionError;
 pub use labels::{LabelConfig, label_frames};
 pub use rig::{Retargeted, retarget};
 
-use crate::human::{Body, Joint, round_mm, stand_local};
+use crate::human::{Body, Joint, Pose, round_mm, stand_local};
 use crate::scene::{ActionSpan, FloorPlan, Human, RoomType, Scene, validate};
 use glam::{DVec2, DVec3};
 use std::path::{Path, PathBuf};
@@ -313,24 +313,13 @@ pub fn import_clip(clip: &Clip, i: usize, opts: &ImportOptions) -> Result<(Human
     Ok((human, report))
 }
 
-/// The facing yaw (scene convention: 0 faces +y) of a pose: perpendicular to its hips, forward.
-fn facing_yaw(pose: &[DVec3; 19]) -> f64 {
-    let left = (pose[Joint::LeftHip.index()] - pose[Joint::RightHip.index()]).truncate();
-    let forward = DVec2::new(left.y, -left.x);
-    (-forward.x).atan2(forward.y)
-}
-
 /// Moves and turns `frames` so that the first frame's pelvis is over `place.at`, facing its yaw.
 fn placed(frames: &mut [[DVec3; 19]], place: Placement) {
-    let start = frames[0][Joint::Pelvis.index()].truncate();
-    let turn = place.yaw_degrees.to_radians() - facing_yaw(&frames[0]);
-    let (s, c) = turn.sin_cos();
+    let first = Pose(frames[0]);
+    let start = first.get(Joint::Pelvis).truncate().extend(0.0);
+    let turn = place.yaw_degrees.to_radians() - first.yaw();
     for pose in frames.iter_mut() {
-        for p in pose.iter_mut() {
-            let d = p.truncate() - start;
-            let r = DVec2::new(c * d.x - s * d.y, s * d.x + c * d.y) + place.at;
-            *p = r.extend(p.z);
-        }
+        *pose = Pose(*pose).translated(-start).placed(place.at.extend(0.0), turn).0;
     }
 }
 
@@ -346,7 +335,7 @@ fn resample(frames: &[[DVec3; 19]], from: f64, to: f64) -> Vec<[DVec3; 19]> {
             let t = k as f64 / to * from;
             let (a, w) = ((t.floor() as usize).min(frames.len() - 1), t.fract());
             let b = (a + 1).min(frames.len() - 1);
-            std::array::from_fn(|j| frames[a][j].lerp(frames[b][j], w))
+            Pose(frames[a]).lerp(&Pose(frames[b]), w).0
         })
         .collect()
 }

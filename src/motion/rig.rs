@@ -163,19 +163,12 @@ fn by_names(rig: &NamedRig, names: &[String], clip: &Clip, hierarchy: bool) -> O
 
 /// The joints from `from` down to `to` (both included), if `to` descends from `from`.
 fn path(clip: &Clip, from: usize, to: usize) -> Option<Vec<usize>> {
-    let mut chain = vec![to];
-    let mut at = to;
-    while at != from {
-        at = clip.parents[at]?;
-        chain.push(at);
-        if chain.len() > clip.names.len() {
-            return None;
-        }
-    }
-    chain.reverse();
-    Some(chain)
+    let up = ancestors(clip, to);
+    let k = up.iter().position(|&j| j == from)?;
+    Some(up[..=k].iter().rev().copied().collect())
 }
 
+/// `j` and its parents up to the root (cut short where a file's parents loop).
 fn ancestors(clip: &Clip, j: usize) -> Vec<usize> {
     let mut out = vec![j];
     while let Some(p) = clip.parents[*out.last().expect("non-empty")] {

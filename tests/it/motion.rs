@@ -146,6 +146,18 @@ fn as_smpl(frames: &[[DVec3; 19]]) -> Vec<f32> {
     out
 }
 
+/// `values` as a `.npy` array of `frames` × `joints` × 3 float32.
+fn write_npy(path: &Path, values: &[f32], frames: usize, joints: usize) {
+    let mut w = npyz::WriteOptions::new()
+        .default_dtype()
+        .shape(&[frames as u64, joints as u64, 3])
+        .writer(std::io::BufWriter::new(std::fs::File::create(path).unwrap()))
+        .begin_nd()
+        .unwrap();
+    w.extend(values.iter().copied()).unwrap();
+    w.finish().unwrap();
+}
+
 fn write_npz(path: &Path, values: &[f32], frames: usize, joints: usize, names: Option<&[&str]>, fps: Option<f64>) {
     let mut npz = npyz::npz::NpzWriter::create(path).unwrap();
     let shape = [frames as u64, joints as u64, 3];
@@ -217,14 +229,7 @@ fn our_own_motion_as_a_smpl_array_in_centimetres_y_up_comes_back_as_it_was() {
     write_npz(&named, &as_smpl(&frames), frames.len(), 22, Some(&shade_sim::motion::npy::SMPL_BODY_JOINTS), Some(30.0));
     assert_eq!(import_one(&named, &opts).0, human);
     let npy = dir.path().join("own.npy");
-    let mut w = npyz::WriteOptions::new()
-        .default_dtype()
-        .shape(&[frames.len() as u64, 22, 3])
-        .writer(std::io::BufWriter::new(std::fs::File::create(&npy).unwrap()))
-        .begin_nd()
-        .unwrap();
-    w.extend(as_smpl(&frames)).unwrap();
-    w.finish().unwrap();
+    write_npy(&npy, &as_smpl(&frames), frames.len(), 22);
     assert_eq!(import_one(&npy, &opts).0, human);
 }
 
@@ -522,10 +527,7 @@ proptest::proptest! {
                 if k == 2 {
                     write_npz(&path, &as_smpl(&frames), frames.len(), 22, None, Some(30.0));
                 } else {
-                    let mut w = npyz::WriteOptions::new().default_dtype().shape(&[frames.len() as u64, 22, 3])
-                        .writer(std::io::BufWriter::new(std::fs::File::create(&path).unwrap())).begin_nd().unwrap();
-                    w.extend(as_smpl(&frames)).unwrap();
-                    w.finish().unwrap();
+                    write_npy(&path, &as_smpl(&frames), frames.len(), 22);
                 }
                 (name, std::fs::read(&path).unwrap())
             }
