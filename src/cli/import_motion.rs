@@ -134,6 +134,13 @@ pub fn run(args: &ImportMotionArgs, global: &GlobalArgs) -> anyhow::Result<ExitS
     }
     let (scene, reports) = import_motion(&args.motions, &opts)?;
     scene.save(&args.out)?;
+    for r in reports.iter().filter(|r| !r.ever_upright) {
+        tracing::warn!(
+            "{}: the trunk is never upright (within 45° of the up axis); if the person stands or sits at all, \
+             the up axis is wrong (--up)",
+            r.file.display()
+        );
+    }
     if global.json {
         let rows: Vec<serde_json::Value> = reports
             .iter()
@@ -142,6 +149,7 @@ pub fn run(args: &ImportMotionArgs, global: &GlobalArgs) -> anyhow::Result<ExitS
                 serde_json::json!({
                     "file": r.file, "human": h.id, "rig": r.rig, "metres_per_unit": r.scale, "y_up": r.y_up,
                     "stature": r.stature, "frames_read": r.frames.0, "frames_written": r.frames.1, "actions": r.actions,
+                    "ever_upright": r.ever_upright,
                 })
             })
             .collect();

@@ -149,6 +149,9 @@ pub struct ImportReport {
     pub frames: (usize, usize),
     /// The spans written.
     pub actions: Vec<ActionSpan>,
+    /// Whether the trunk is within 45° of upright in some frame. A clip that never is either lies
+    /// throughout or was read with the wrong up axis (`--up`); the command warns.
+    pub ever_upright: bool,
 }
 
 /// The stature of the person in `frames` (z-up, any unit), the larger of two estimates as
@@ -291,6 +294,10 @@ pub fn import_clip(clip: &Clip, i: usize, opts: &ImportOptions) -> Result<(Human
         labels[span.start..span.end].fill(span.action);
     }
     let actions = labels::runs(&labels);
+    let ever_upright = frames.iter().any(|p| {
+        let trunk = p[Joint::Neck.index()] - p[Joint::Pelvis.index()];
+        trunk.angle_between(DVec3::Z) < std::f64::consts::FRAC_PI_4
+    });
     let human = Human {
         id: format!("h{i}"),
         skeleton: body.skeleton(),
@@ -309,6 +316,7 @@ pub fn import_clip(clip: &Clip, i: usize, opts: &ImportOptions) -> Result<(Human
         stature,
         frames: (clip.frames.len(), frames.len()),
         actions,
+        ever_upright,
     };
     Ok((human, report))
 }

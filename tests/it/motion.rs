@@ -277,6 +277,35 @@ fn import_motion_command_writes_an_input_that_generate_takes() {
 }
 
 #[test]
+fn a_clip_read_with_the_wrong_up_axis_is_warned_about() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |up: &str| {
+        let out = dir.path().join(format!("{up}.json"));
+        let file = clip("freebvh_walk.bvh");
+        let args = [
+            "import-motion",
+            file.to_str().unwrap(),
+            "--room",
+            "bedroom",
+            "--floor",
+            "4x4",
+            "--place",
+            "2,1,0",
+            "--up",
+            up,
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        let o = shade_sim(&args);
+        assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8_lossy(&o.stderr).into_owned()
+    };
+    assert!(run("y").is_empty());
+    let warned = run("z");
+    assert!(warned.contains("freebvh_walk.bvh: the trunk is never upright") && warned.contains("--up"), "{warned}");
+}
+
+#[test]
 fn a_clip_that_leaves_the_floor_plan_is_an_error_naming_the_frame() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("input.json");
