@@ -5,7 +5,8 @@
 //! tests (`sim::check`), each as a row of balls along its bone no further apart than half its radius
 //! (at most a quarter of the radius shallower than the capsule, where its axis grazes a corner, and
 //! under 6 % where it stays half a radius off the piece), at every frame where the body
-//! has moved 10 cm. J_p = Σ over pieces, bones and sampled frames of how far the bone reaches
+//! has moved 10 cm; a pose repeated exactly (held still, a clip looped) is tested once and counted
+//! for each frame it stands for. J_p = Σ over pieces, bones and sampled frames of how far the bone reaches
 //! within [`CLEARANCE`] of the piece (its deepest ball's reach: the capsule's depth, which is what
 //! the check measures, plus the clearance); a bone resting on a seat's top costs only when it is
 //! inside. Its gradient is a central difference of the exact value over the balls
@@ -46,6 +47,8 @@ struct Ball {
     radius: f64,
     /// Which bone of which human it belongs to (numbered per scene).
     bone: u32,
+    /// How many sampled frames hold this pose (a pose held still or a clip looped is tested once).
+    weight: f64,
 }
 
 /// The bodies of one scene as balls along their bones, one row of balls per bone and sampled
@@ -83,20 +86,18 @@ impl BodyBalls {
     pub fn of(humans: &[Human]) -> BodyBalls {
         let mut out = BodyBalls::default();
         let mut bones = 0u32;
-        let sampled: Vec<Vec<usize>> = humans.iter().map(sampled_frames).collect();
-        let total: usize = sampled.iter().map(Vec::len).sum();
+        let poses: Vec<Vec<Pose>> = humans.iter().map(|h| distinct_poses(h, sampled_frames(h))).collect();
+        let total: usize = poses.iter().map(Vec::len).sum();
         let keep_every = total.div_ceil(MAX_SAMPLED_FRAMES).max(1);
-        for (human, frames) in humans.iter().zip(sampled) {
-            let middles: Vec<usize> = contact_middles(human).collect();
-            let kept = frames.into_iter().enumerate().filter(|(i, f)| i % keep_every == 0 || middles.contains(f));
-            for (_, f) in kept {
-                let joints: Vec<DVec3> = human.frame(f).collect();
+        for (human, poses) in humans.iter().zip(poses) {
+            let kept = poses.into_iter().enumerate().filter(|(i, p)| i % keep_every == 0 || p.contact);
+            for (_, pose) in kept {
                 bones += human.skeleton.bones.len() as u32;
                 for (k, bone) in human.skeleton.bones.iter().enumerate() {
                     out.reach = out.reach.max(bone.radius);
-                    let (a, b) = (joints[bone.a], joints[bone.b]);
+                    let (a, b) = (pose.joints[bone.a], pose.joints[bone.b]);
                     let start = out.balls.len();
-                    out.balls.extend(balls_along(a, b, bone.radius, bones + k as u32));
+                    out.balls.extend(balls_along(a, b, bone.radius, bones + k as u32, pose.weight));
                     out.rows.push(BallRow { range: start..out.balls.len(), a, b, radius: bone.radius });
                 }
             }
@@ -134,9 +135,36 @@ impl BodyBalls {
 
 /// The balls of a capsule from `a` to `b`: centres on the segment, no more than half the radius
 /// apart, ends included.
-fn balls_along(a: DVec3, b: DVec3, radius: f64, bone: u32) -> impl Iterator<Item = Ball> {
+fn balls_along(a: DVec3, b: DVec3, radius: f64, bone: u32, weight: f64) -> impl Iterator<Item = Ball> {
     let gaps = (a.distance(b) / (0.5 * radius)).ceil().max(1.0) as usize;
-    (0..=gaps).map(move |i| Ball { center: a.lerp(b, i as f64 / gaps as f64), radius, bone })
+    (0..=gaps).map(move |i| Ball { center: a.lerp(b, i as f64 / gaps as f64), radius, bone, weight })
+}
+
+/// One distinct pose of a human among its sampled frames: its joints, how many sampled frames
+/// hold exactly these joints, and whether one of them is a contact span's middle.
+struct Pose {
+    joints: Vec<DVec3>,
+    weight: f64,
+    contact: bool,
+}
+
+/// `frames` of `human` with exact repeats (a person held still, a clip looped) folded into the
+/// first frame of their pose, in frame order.
+fn distinct_poses(human: &Human, frames: Vec<usize>) -> Vec<Pose> {
+    let middles: Vec<usize> = contact_middles(human).collect();
+    let mut poses: Vec<Pose> = Vec::new();
+    for f in frames {
+        let joints: Vec<DVec3> = human.frame(f).collect();
+        let contact = middles.contains(&f);
+        match poses.iter_mut().find(|p| p.joints == joints) {
+            Some(p) => {
+                p.weight += 1.0;
+                p.contact |= contact;
+            }
+            None => poses.push(Pose { joints, weight: 1.0, contact }),
+        }
+    }
+    poses
 }
 
 /// The frames of `human` J_p looks at: the first and the last, each one where some joint has moved
@@ -216,7 +244,7 @@ fn piece_cost(o: &GuidedObject, balls: &[Ball]) -> f64 {
     let parts = part_frames(o);
     balls
         .chunk_by(|a, b| a.bone == b.bone)
-        .map(|bone| bone.iter().map(|b| deepest_part(&parts, b)).fold(0.0, f64::max))
+        .map(|bone| bone[0].weight * bone.iter().map(|b| deepest_part(&parts, b)).fold(0.0, f64::max))
         .sum()
 }
 
@@ -355,20 +383,49 @@ mod tests {
     #[test]
     fn many_people_are_thinned_to_a_bounded_number_of_frames_keeping_their_contact_frames() {
         let body = Body::default();
+        // Each sitter slides 20 cm a frame over 4 frames: 4 distinct poses, one contact span.
         let sitters = |n: usize| -> Vec<Human> {
             (0..n)
                 .map(|k| {
                     let mut m = Motion::new(body, 30.0);
-                    m.hold(sit(&body, DVec2::new(k as f64, 0.0), 0.45, 0.0), 4, Action::Sit);
+                    for f in 0..4 {
+                        m.hold(sit(&body, DVec2::new(k as f64, 0.2 * f as f64), 0.45, 0.0), 1, Action::Sit);
+                    }
                     m.into_human(format!("h{k}"))
                 })
                 .collect()
         };
-        // Each sitter is sampled at frames 0, 2 (the contact span's middle) and 3.
-        let per_frame = BodyBalls::of(&sitters(1)).len() / 3;
-        assert_eq!(BodyBalls::of(&sitters(100)).len(), 100 * 3 * per_frame, "300 frames: all kept");
-        // 600 × 3 = 1,800 frames: every 4th kept (frame 0) and the middles (frame 2).
+        let per_frame = BodyBalls::of(&sitters(1)).len() / 4;
+        assert_eq!(BodyBalls::of(&sitters(100)).len(), 100 * 4 * per_frame, "400 frames: all kept");
+        // 600 × 4 = 2,400 frames: every 5th kept (frame 0) and the span's middle (frame 2).
         assert_eq!(BodyBalls::of(&sitters(600)).len(), 600 * 2 * per_frame);
+    }
+
+    #[test]
+    fn a_pose_held_or_looped_is_tested_once_and_counted_for_each_frame_sampled() {
+        let body = Body::default();
+        let pose = sit(&body, DVec2::new(0.0, -0.05), 0.45, 0.0);
+        let held = |frames: usize| {
+            let mut m = Motion::new(body, 30.0);
+            m.hold(pose, frames, Action::Sit);
+            BodyBalls::of(&[m.into_human("h0")])
+        };
+        // Held for 4 frames, the pose is sampled at frames 0, 2 (the span's middle) and 3.
+        let (once, thrice) = (held(1), held(4));
+        assert_eq!(thrice.len(), once.len(), "one pose's balls");
+        let (single, triple) = (body_penetration(&[stool(0.55)], &once), body_penetration(&[stool(0.55)], &thrice));
+        assert!(single.0 > 0.005);
+        assert_eq!(triple.0, 3.0 * single.0);
+        // A clip looped three times (sit, stand, sit, stand, ...) holds two poses.
+        let stand = crate::human::stand(&body, DVec2::new(0.0, 0.6), 0.0);
+        let mut m = Motion::new(body, 30.0);
+        for _ in 0..3 {
+            m.hold(pose, 1, Action::Sit).hold(stand, 1, Action::Stand);
+        }
+        let looped = BodyBalls::of(&[m.into_human("h0")]);
+        let mut m = Motion::new(body, 30.0);
+        m.hold(pose, 1, Action::Sit).hold(stand, 1, Action::Stand);
+        assert_eq!(looped.len(), BodyBalls::of(&[m.into_human("h0")]).len());
     }
 
     #[test]
@@ -410,8 +467,9 @@ mod tests {
             let radius = 0.05 + 0.02 * (t * 17.0).sin().abs();
             let check = solids.iter().map(|s| capsule_depth(a, b, radius, s)).fold(0.0, f64::max);
             let frames: Vec<PartFrame> = parts.iter().map(PartFrame::of).collect();
-            let balls =
-                balls_along(a, b, radius, 0).map(|ball| deepest_part(&frames, &ball) - CLEARANCE).fold(0.0, f64::max);
+            let balls = balls_along(a, b, radius, 0, 1.0)
+                .map(|ball| deepest_part(&frames, &ball) - CLEARANCE)
+                .fold(0.0, f64::max);
             // The row's union lies inside the capsule: never deeper than it.
             assert!(balls <= check + 1e-4, "{i}: balls {balls}, capsule {check}");
             // While the bone's axis is outside the piece, at distance d = radius − depth, the check's
