@@ -12,7 +12,7 @@ use common::median;
 use shade_sim::export::{MjcfOptions, render_plan, scene_glb, scene_mjcf};
 use std::hint::black_box;
 
-const ARENA: MjcfOptions = MjcfOptions { free_furniture: false, keyframes: false };
+const ARENA: MjcfOptions = MjcfOptions { free_furniture: false, keyframes: false, contact_pairs: false };
 
 fn bench(c: &mut Criterion) {
     let scenes = common::named_scenes("scenes/reference");

@@ -3,13 +3,17 @@
 //! `check` it ([`crate::sim`]) and, with `require_clean`, resample with new seeds until each input
 //! has its layouts or the attempts are spent.
 //!
+//! Inputs of several room types go through [`make_grouped_layouts`]: each type's inputs with its
+//! own generator, seeds numbered within the type ([`room_groups`]), so the command line's folder
+//! runs and Python's lists of inputs give the same layouts.
+//!
 //! This is the only module of the library that joins `generator`, `repair` and `sim`; it adds no
 //! behaviour of its own beyond the resampling loop.
 
 use crate::generator::{GenError, Generator, GuidanceConfig};
 use crate::physics::Physics;
 use crate::repair::{RepairConfig, RepairReport, repair_scene};
-use crate::scene::Scene;
+use crate::scene::{RoomType, Scene};
 use crate::sim::{CheckConfig, CheckReport, SimPhysics, check_scene};
 use rayon::prelude::*;
 use std::sync::Arc;
@@ -127,6 +131,43 @@ pub fn make_layouts(
                 out.accepted += 1;
                 out.kept[i].push(layout);
             }
+        }
+    }
+    Ok(out)
+}
+
+/// The room types of `inputs` in the order they first appear, each with the indices of its inputs.
+pub fn room_groups(inputs: &[Scene]) -> Vec<(RoomType, Vec<usize>)> {
+    let mut groups: Vec<(RoomType, Vec<usize>)> = Vec::new();
+    for (i, s) in inputs.iter().enumerate() {
+        match groups.iter_mut().find(|(room, _)| *room == s.room_type) {
+            Some((_, members)) => members.push(i),
+            None => groups.push((s.room_type, vec![i])),
+        }
+    }
+    groups
+}
+
+/// [`make_layouts`] for inputs of several room types: each group (the indices of its inputs, as
+/// [`room_groups`] gives them, and its generator) one after another, seeds numbered within the
+/// group; the layouts come back in input order. `progress` counts the layouts sampled over all
+/// groups.
+pub fn make_grouped_layouts(
+    inputs: &[Scene],
+    groups: &[(Vec<usize>, &Generator)],
+    opts: &LayoutOptions,
+    progress: &mut dyn FnMut(usize),
+) -> Result<Layouts, GenError> {
+    let mut out = Layouts { kept: vec![Vec::new(); inputs.len()], sampled: 0, accepted: 0 };
+    let mut offset = 0;
+    for (members, generator) in groups {
+        let group: Vec<Scene> = members.iter().map(|&i| inputs[i].clone()).collect();
+        let layouts = make_layouts(generator, &group, opts, &mut |done| progress(offset + done))?;
+        offset += members.len() * opts.samples;
+        out.sampled += layouts.sampled;
+        out.accepted += layouts.accepted;
+        for (&i, kept) in members.iter().zip(layouts.kept) {
+            out.kept[i] = kept;
         }
     }
     Ok(out)

@@ -82,7 +82,7 @@ pub fn run(args: &DemoArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
             let report = check_scene(scene, &cfg);
             let base = args.out.join(name);
             scene.save(base.with_extension("json"))?;
-            let xml = scene_mjcf(scene, MjcfOptions { free_furniture: false, keyframes: true });
+            let xml = scene_mjcf(scene, MjcfOptions::default());
             let xml_path = base.with_extension("xml");
             write_atomic(&xml_path, xml.as_bytes()).with_context(|| format!("{}: cannot write", xml_path.display()))?;
             let png_path = base.with_extension("png");

@@ -65,7 +65,8 @@ pub fn run(args: &ExportArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus>
     let (bytes, validation) = match args.format {
         Format::Mjcf | Format::Robosuite => {
             let robosuite = args.format == Format::Robosuite;
-            let text = scene_mjcf(&scene, MjcfOptions { free_furniture: args.free_furniture, keyframes: !robosuite });
+            let opts = if robosuite { MjcfOptions::robosuite() } else { MjcfOptions::default() };
+            let text = scene_mjcf(&scene, MjcfOptions { free_furniture: args.free_furniture, ..opts });
             let validation = if args.validate { Some(validate(&scene, &text, &args.out)?) } else { None };
             if robosuite {
                 let motion = motion_path(&args.out);

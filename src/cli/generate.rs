@@ -8,7 +8,7 @@ use super::{ExitStatus, GlobalArgs};
 use anyhow::Context;
 use clap::Args;
 use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig, shipped_model};
-use shade_sim::pipeline::{Layout, LayoutOptions, make_layouts};
+use shade_sim::pipeline::{LayoutOptions, make_grouped_layouts, room_groups};
 use shade_sim::repair::{RepairConfig, RepairTotals};
 use shade_sim::scene::{RoomType, Scene};
 use std::path::{Path, PathBuf};
@@ -136,48 +136,34 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
         ..LayoutOptions::default()
     };
     // One model per room type, in the order the types first appear (with --model: one type only).
-    let mut rooms: Vec<RoomType> = Vec::new();
-    for s in &inputs {
-        if !rooms.contains(&s.room_type) {
-            rooms.push(s.room_type);
-        }
-    }
-    if args.model.is_some() && rooms.len() > 1 {
-        let (f, s) = files.iter().zip(&inputs).find(|(_, s)| s.room_type != rooms[0]).expect("a second room type");
+    let groups = room_groups(&inputs);
+    if args.model.is_some() && groups.len() > 1 {
+        let (f, s) = files.iter().zip(&inputs).find(|(_, s)| s.room_type != groups[0].0).expect("a second room type");
         anyhow::bail!(
             "{}: is a {} but {} is a {}; a --model generates one room type",
             f.display(),
             s.room_type,
             files[0].display(),
-            rooms[0]
+            groups[0].0
         );
     }
-    let generators: Vec<(RoomType, Generator, Vec<usize>)> = rooms
+    let generators: Vec<Generator> = groups
         .iter()
-        .map(|&room| -> anyhow::Result<_> {
-            let members: Vec<usize> = (0..inputs.len()).filter(|&i| inputs[i].room_type == room).collect();
-            let generator = load_model(args.model.as_deref(), room, &files[members[0]])?;
+        .map(|(room, members)| -> anyhow::Result<_> {
+            let generator = load_model(args.model.as_deref(), *room, &files[members[0]])?;
             let generator = if args.no_empty_projection { generator.without_empty_projection() } else { generator };
-            let generator = match args.sampling_steps {
+            Ok(match args.sampling_steps {
                 Some(n) => generator.with_sampling_steps(n),
                 None => generator,
-            };
-            Ok((room, generator, members))
+            })
         })
         .collect::<anyhow::Result<_>>()?;
     let bar = super::progress::bar(global, (inputs.len() * args.samples) as u64, "generate");
-    let mut kept: Vec<Vec<Layout>> = vec![Vec::new(); inputs.len()];
-    let (mut sampled, mut accepted, mut offset) = (0usize, 0usize, 0usize);
-    for (_, generator, members) in &generators {
-        let group: Vec<Scene> = members.iter().map(|&i| inputs[i].clone()).collect();
-        let s = make_layouts(generator, &group, &opts, &mut |done| bar.set_position((offset + done) as u64))?;
-        offset += members.len() * args.samples;
-        (sampled, accepted) = (sampled + s.sampled, accepted + s.accepted);
-        for (&i, k) in members.iter().zip(s.kept) {
-            kept[i] = k;
-        }
-    }
+    let grouped: Vec<(Vec<usize>, &Generator)> =
+        groups.into_iter().zip(&generators).map(|((_, members), g)| (members, g)).collect();
+    let layouts = make_grouped_layouts(&inputs, &grouped, &opts, &mut |done| bar.set_position(done as u64))?;
     bar.finish_and_clear();
+    let (kept, sampled, accepted) = (layouts.kept, layouts.sampled, layouts.accepted);
     std::fs::create_dir_all(&args.out).with_context(|| format!("{}: cannot create folder", args.out.display()))?;
     let mut rows = Vec::new();
     let mut repaired = Vec::new();

@@ -24,11 +24,23 @@ pub struct MjcfOptions {
     /// Write the humans' motion as `<keyframe>`s. Default true; robosuite arenas leave them out
     /// (a merged robot changes the model's sizes) and use the companion motion file instead.
     pub keyframes: bool,
+    /// Write the `<contact><pair>`s between bones and static geoms. Default true; robosuite arenas
+    /// leave them out: merged into a robosuite 1.5.2 environment, the world stops at the
+    /// environment's first `mj_forward` ("treeIterInit: contact 0 is between two static bodies",
+    /// MuJoCo 3.9), where the same world alone steps through every keyframe.
+    pub contact_pairs: bool,
 }
 
 impl Default for MjcfOptions {
     fn default() -> MjcfOptions {
-        MjcfOptions { free_furniture: false, keyframes: true }
+        MjcfOptions { free_furniture: false, keyframes: true, contact_pairs: true }
+    }
+}
+
+impl MjcfOptions {
+    /// A robosuite arena: static furniture, no keyframes, no contact pairs.
+    pub fn robosuite() -> MjcfOptions {
+        MjcfOptions { free_furniture: false, keyframes: false, contact_pairs: false }
     }
 }
 
@@ -165,7 +177,9 @@ pub fn scene_mjcf(scene: &Scene, opts: MjcfOptions) -> String {
     statics.extend(write_furniture(&mut x, scene, opts.free_furniture));
     let bones = write_humans(&mut x, scene);
     x.push_str("  </worldbody>\n");
-    write_pairs(&mut x, &bones, &statics);
+    if opts.contact_pairs {
+        write_pairs(&mut x, &bones, &statics);
+    }
     if opts.keyframes {
         write_keyframes(&mut x, scene);
     }

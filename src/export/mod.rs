@@ -1,5 +1,6 @@
 //! Exports: MuJoCo worlds (MJCF), and pictures (a small deterministic canvas, masks as PNG, the
-//! humans' top and side views), glTF binary with the motion as an animation.
+//! humans' top and side views), glTF binary with the motion as an animation, and where a robot's
+//! base can stand in a scene (for robosuite).
 
 mod canvas;
 mod font;
@@ -12,6 +13,7 @@ mod mesh;
 mod mjcf;
 mod palette;
 mod plan_png;
+mod robot_spot;
 #[cfg(feature = "mujoco")]
 mod validate_mujoco;
 
@@ -25,5 +27,6 @@ pub use mesh::TriMesh;
 pub use mjcf::{MjcfOptions, MocapMotion, PAIR_MARGIN, mocap_motion, part_names, scene_mjcf};
 pub use palette::{MATERIALS, material};
 pub use plan_png::{group_color, render_plan};
+pub use robot_spot::robot_spot;
 #[cfg(feature = "mujoco")]
 pub use validate_mujoco::{MAX_MOVE, MujocoValidation, validate_in_mujoco};

@@ -18,7 +18,7 @@ use std::collections::HashMap;
 /// # Errors
 /// MuJoCo's message when the exported model does not load.
 pub fn mujoco_replay(scene: &Scene, tolerance: f64) -> Result<Vec<EngineContact>, String> {
-    let xml = scene_mjcf(scene, MjcfOptions { free_furniture: false, keyframes: false });
+    let xml = scene_mjcf(scene, MjcfOptions { keyframes: false, ..MjcfOptions::default() });
     let model = MjModel::from_xml_string(&xml).map_err(|e| e.to_string())?;
     let mut data = MjData::new(&model);
     let motion = mocap_motion(scene);

@@ -187,7 +187,7 @@ assert np.allclose(d.mocap_pos[ids[0]], motion["frames"][-1][0][:3])
 print("ok", model.nbody, model.nmocap)
 "#;
     let motion_file = dir.path().join("room.motion.json");
-    assert!(python(".venv-robosuite", script, &[&xml, &motion_file]).starts_with("ok"));
+    assert!(python(".venv", script, &[&xml, &motion_file]).starts_with("ok"));
 }
 
 /// The file name without its extension.
@@ -327,7 +327,7 @@ for arena in sys.argv[1:]:
     print("ok", arena.rsplit("/", 1)[-1], model.nbody)
 "#;
     let args: Vec<&std::path::Path> = arenas.iter().map(|p| p.as_path()).collect();
-    assert_eq!(python(".venv-robosuite", script, &args).matches("ok ").count(), arenas.len());
+    assert_eq!(python(".venv", script, &args).matches("ok ").count(), arenas.len());
     // The Khronos glTF validator (npm, installed by scripts/test.sh): no errors, no warnings.
     for glb in worlds.iter().map(|w| w.with_extension("glb")) {
         let o = std::process::Command::new("node")

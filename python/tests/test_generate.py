@@ -1,0 +1,127 @@
+"""Generation, the check and the exports through the package."""
+
+import threading
+import time
+
+import mujoco
+import numpy as np
+
+import shade_sim
+
+
+def test_the_same_seed_gives_the_same_layouts_and_another_seed_others(example):
+    a = shade_sim.generate(example("living_l"), samples=2, seed=3)
+    b = shade_sim.generate(example("living_l"), samples=2, seed=3)
+    c = shade_sim.generate(example("living_l"), samples=2, seed=4)
+    assert len(a) == 2 and all(s.room_type == "living" for s in a)
+    assert [s.to_json() for s in a] == [s.to_json() for s in b]
+    assert [s.to_json() for s in a] != [s.to_json() for s in c]
+    # The input's people and floor come back unchanged; only objects are added.
+    src = shade_sim.load_scene(example("living_l")).to_dict()
+    out = a[0].to_dict()
+    assert (out["humans"], out["floor_plan"]) == (src["humans"], src["floor_plan"])
+    assert len(out["objects"]) > 0
+
+
+def test_generate_matches_the_command_line_byte_for_byte(example, cli, tmp_path):
+    import subprocess
+
+    subprocess.run([cli, "-q", "generate", "--input", example("dining_l"), "--out", str(tmp_path), "--seed", "7"], check=True)
+    ours = shade_sim.generate(example("dining_l"), seed=7)[0]
+    assert (tmp_path / "dining_l_0.json").read_text() == ours.to_json()
+
+
+def test_require_clean_layouts_pass_the_check_and_unrepaired_ones_mostly_do_not(example):
+    clean = shade_sim.generate(example("bedroom_l"), samples=2, seed=0, require_clean=True)
+    assert len(clean) == 2
+    assert all(shade_sim.check(s) == [] for s in clean)
+    raw = shade_sim.generate(example("bedroom_l"), samples=4, seed=0, guidance="none", repair=False)
+    violations = [shade_sim.check(s) for s in raw]
+    assert any(violations)
+    kinds = {v["kind"] for vs in violations for v in vs}
+    assert kinds <= {"penetration", "unsupported", "object_overlap", "object_wall", "outside_floor", "unstable"}
+
+
+def test_check_reports_two_overlapping_pieces(root):
+    raw = shade_sim.load_scene(f"{root}/scenes/reference/bedroom_rect.json").to_dict()
+    first = raw["objects"][0]
+    raw["objects"].append(dict(first, id="copy"))
+    found = shade_sim.check(raw, stability=False)
+    overlap = [v for v in found if v["kind"] == "object_overlap"]
+    assert overlap and {overlap[0]["object"], overlap[0]["other"]} == {first["id"], "copy"}
+    assert overlap[0]["depth"] > 0.1
+
+
+def test_the_gil_is_released_while_rust_generates(example):
+    done = threading.Event()
+    ticks = 0
+
+    def work():
+        shade_sim.generate(example("bedroom_rect"), samples=2, seed=1)
+        done.set()
+
+    thread = threading.Thread(target=work)
+    start = time.perf_counter()
+    thread.start()
+    while not done.is_set():
+        ticks += 1
+        time.sleep(0.001)
+    thread.join()
+    elapsed = time.perf_counter() - start
+    # A held GIL would stop this loop for the whole call; released, it ticks about once a ms.
+    assert elapsed > 0.2 and ticks > elapsed * 200, (ticks, elapsed)
+
+
+def test_the_mjcf_world_replays_the_people_in_mujoco(root):
+    scene = shade_sim.load_scene(f"{root}/scenes/reference/living_l.json")
+    model = mujoco.MjModel.from_xml_string(shade_sim.to_mjcf(scene))
+    data = mujoco.MjData(model)
+    motion = shade_sim.mocap_motion(scene)
+    frames = motion["frames"]
+    assert model.nkey == frames.shape[0] and model.nmocap == frames.shape[1] == len(motion["bodies"])
+    ids = [model.body(name).mocapid[0] for name in motion["bodies"]]
+    for k in (0, model.nkey // 2, model.nkey - 1):
+        mujoco.mj_resetDataKeyframe(model, data, k)
+        mujoco.mj_forward(model, data)
+        assert np.allclose(data.mocap_pos[ids], frames[k, :, :3], atol=1e-5)
+    free = mujoco.MjModel.from_xml_string(shade_sim.to_mjcf(scene, free_furniture=True, keyframes=False))
+    # Every standing piece gets a free joint (hanging ones stay fixed to their wall).
+    assert free.nkey == 0 and 0 < free.njnt <= len(scene.object_ids)
+    assert all(free.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE for j in range(free.njnt))
+    assert "<pair" not in shade_sim.to_mjcf(scene, contact_pairs=False)
+
+
+def test_the_free_spot_is_on_the_floor_and_clear_of_everything(root):
+    scene = shade_sim.load_scene(f"{root}/scenes/reference/dining_l.json")
+    x, y = shade_sim.free_spot(scene, 0.3)
+    p = np.array([x, y])
+    joints = np.concatenate([scene.frames(i).reshape(-1, 3)[:, :2] for i in range(len(scene.human_ids))])
+    assert np.min(np.linalg.norm(joints - p, axis=1)) > 0.3
+    for cx, cy, _, sx, sy, _, yaw in scene.boxes():
+        c, s = np.cos(-yaw), np.sin(-yaw)
+        d = p - [cx, cy]
+        local = np.abs([d[0] * c - d[1] * s, d[0] * s + d[1] * c]) - [sx / 2, sy / 2]
+        assert np.linalg.norm(np.maximum(local, 0)) >= 0.3
+    assert shade_sim.free_spot(scene, 50.0) is None
+
+
+def test_a_list_of_inputs_gives_what_the_command_line_gives_for_a_folder(example, cli, tmp_path):
+    import shutil
+    import subprocess
+
+    names = ["living_rect", "bedroom_l", "living_l"]
+    folder = tmp_path / "in"
+    folder.mkdir()
+    for i, n in enumerate(names):
+        # The CLI reads a folder in name order: number the files to keep this order.
+        shutil.copy(example(n), folder / f"{i}_{n}.json")
+    subprocess.run([cli, "-q", "generate", "--input", str(folder), "--out", str(tmp_path / "out"), "--samples", "2", "--seed", "9"], check=True)
+    lists = shade_sim.generate([example(n) for n in names], samples=2, seed=9)
+    assert [len(x) for x in lists] == [2, 2, 2]
+    for i, (n, layouts) in enumerate(zip(names, lists)):
+        for k, s in enumerate(layouts):
+            assert (tmp_path / "out" / f"{i}_{n}_{k}.json").read_text() == s.to_json(), (n, k)
+    # A tuple works as a list; one input alone is a flat list.
+    assert [s.to_json() for s in shade_sim.generate((example("bedroom_l"),), seed=9)[0]] == [
+        s.to_json() for s in shade_sim.generate(example("bedroom_l"), seed=9)
+    ]
