@@ -169,13 +169,21 @@ fn model_error(e: impl std::fmt::Display) -> PyErr {
     ModelError::new_err(e.to_string())
 }
 
-/// A scene from a `Scene`, a path (str or os.PathLike) or a dict of the file format.
+/// A scene from a `Scene`, a path (str or os.PathLike) or a dict of the file format (numpy arrays
+/// allowed where the format has number arrays).
 fn scene_of(py: Python<'_>, source: &Bound<'_, PyAny>) -> PyResult<Arc<Scene>> {
     if let Ok(scene) = source.cast::<PyScene>() {
         return Ok(scene.get().scene.clone());
     }
     if source.is_instance_of::<PyDict>() {
-        let text: String = py.import("json")?.call_method1("dumps", (source,))?.extract()?;
+        // numpy arrays and scalars (frames from a body model, say) are written as their lists.
+        let kwargs = PyDict::new(py);
+        kwargs.set_item("default", py.import("operator")?.getattr("methodcaller")?.call1(("tolist",))?)?;
+        let text: String = py
+            .import("json")?
+            .call_method("dumps", (source,), Some(&kwargs))
+            .map_err(|e| SceneError::new_err(format!("<dict>: not JSON data: {e}")))?
+            .extract()?;
         return Scene::from_json(&text, Path::new("<dict>")).map(Arc::new).map_err(scene_error);
     }
     if source.is_instance_of::<PyString>() || source.hasattr("__fspath__")? {

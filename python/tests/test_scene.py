@@ -50,3 +50,19 @@ def test_save_writes_the_files_bytes(root, tmp_path):
     scene.save(out)
     assert out.read_bytes() == pathlib.Path(path).read_bytes()
     assert scene.to_json().encode() == out.read_bytes()
+
+
+def test_a_dict_may_hold_numpy_arrays_and_anything_else_is_a_scene_error(example):
+    raw = json.load(open(example("living_l")))
+    scene = shade_sim.load_scene(raw)
+    raw["humans"][0]["frames"] = scene.frames(0)
+    raw["floor_plan"]["polygon"] = scene.floor()
+    raw["humans"][0]["fps"] = np.float32(raw["humans"][0]["fps"])
+    assert shade_sim.load_scene(raw) == scene
+    raw["humans"][0]["skeleton"] = object()
+    try:
+        shade_sim.load_scene(raw)
+    except shade_sim.SceneError as e:
+        assert str(e).startswith("<dict>: not JSON data: ")
+    else:
+        raise AssertionError("an object() in the dict was accepted")
