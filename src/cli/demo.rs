@@ -10,8 +10,8 @@ use clap::Args;
 use rayon::prelude::*;
 use shade_sim::export::{MjcfOptions, render_plan, scene_glb, scene_mjcf};
 use shade_sim::generator::{Generator, shipped_model};
-use shade_sim::pipeline::{LayoutOptions, make_layouts};
-use shade_sim::scene::{RoomType, Scene, write_atomic};
+use shade_sim::pipeline::{LayoutOptions, make_grouped_layouts, room_groups};
+use shade_sim::scene::{Scene, write_atomic};
 use shade_sim::sim::{CheckConfig, check_scene};
 use std::path::PathBuf;
 use std::time::Instant;
@@ -51,20 +51,14 @@ pub fn run(args: &DemoArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     std::fs::create_dir_all(&args.out).with_context(|| format!("{}: cannot create folder", args.out.display()))?;
 
     let bar = super::progress::bar(global, (inputs.len() * args.samples) as u64, "generate");
-    let mut generated: Vec<Vec<Scene>> = vec![Vec::new(); inputs.len()];
-    for room in RoomType::ALL {
-        let which: Vec<usize> = (0..inputs.len()).filter(|&i| inputs[i].room_type == room).collect();
-        if which.is_empty() {
-            continue;
-        }
-        let generator = Generator::new(shipped_model(room)?);
-        let batch: Vec<Scene> = which.iter().map(|&i| inputs[i].clone()).collect();
-        let before = bar.position();
-        let out = make_layouts(&generator, &batch, &opts, &mut |done| bar.set_position(before + done as u64))?;
-        for (&i, layouts) in which.iter().zip(out.kept) {
-            generated[i] = layouts.into_iter().map(|l| l.scene).collect();
-        }
-    }
+    let groups = room_groups(&inputs);
+    let generators: Vec<Generator> =
+        groups.iter().map(|(room, _)| Ok(Generator::new(shipped_model(*room)?))).collect::<anyhow::Result<_>>()?;
+    let grouped: Vec<(Vec<usize>, &Generator)> =
+        groups.into_iter().zip(&generators).map(|((_, members), g)| (members, g)).collect();
+    let layouts = make_grouped_layouts(&inputs, &grouped, &opts, &mut |done| bar.set_position(done as u64))?;
+    let generated: Vec<Vec<Scene>> =
+        layouts.kept.into_iter().map(|kept| kept.into_iter().map(|l| l.scene).collect()).collect();
     bar.finish_and_clear();
 
     let jobs: Vec<(String, &Scene)> = files

@@ -40,12 +40,7 @@ pub fn robot_spot(scene: &Scene, clearance: f64) -> Option<[f64; 2]> {
     let person_margin = joint_radius + spacing * std::f64::consts::FRAC_1_SQRT_2;
     let distance = |p: DVec2| {
         let walls = floor.distance_to_boundary(p);
-        let pieces = scene.objects.iter().map(|o| {
-            let (sin, cos) = (-o.yaw).sin_cos();
-            let d = p - DVec2::new(o.center[0], o.center[1]);
-            let local = DVec2::new(d.x * cos - d.y * sin, d.x * sin + d.y * cos);
-            (local.abs() - DVec2::new(o.size[0], o.size[1]) * 0.5).max(DVec2::ZERO).length()
-        });
+        let pieces = scene.objects.iter().map(|o| o.obox().footprint_signed_distance(p).max(0.0));
         let bodies = people.iter().map(|q| q.distance(p) - person_margin);
         pieces.chain(bodies).fold(walls, f64::min)
     };
