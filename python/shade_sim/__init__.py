@@ -18,6 +18,10 @@ import os
 import tempfile
 from typing import Any, Union
 
+# A declared dependency, imported first: without it the arrays would fail inside Rust (pyo3's
+# PanicException) at the first call that returns one, instead of here as an ImportError.
+import numpy as _numpy  # noqa: F401
+
 from ._native import (
     ModelError,
     Scene,
