@@ -81,15 +81,26 @@ def run(
     threads: int = 1,
     kill_first_attempt: Optional[str] = None,
 ) -> dict:
-    """Generates and writes every job's scene; returns counts and timing."""
+    """Generates every job's scene and writes each as soon as it is back (a run of thousands keeps
+    at most a batch of results in memory, and a failure leaves every file written before it
+    complete); returns counts and timing."""
     todo = jobs_for(inputs, scenes, seed)
     os.makedirs(out, exist_ok=True)
     start = time.perf_counter()
     setup = 0.0
+    written = 0
+
+    def keep(job: Job, data: Optional[bytes]) -> None:
+        nonlocal written
+        if data is not None:
+            write_atomic(os.path.join(out, out_name(job)), data)
+            written += 1
+
     if workers == 0:
         # The same thread budget as a Ray task (read when the library first runs in parallel).
         os.environ.setdefault("RAYON_NUM_THREADS", str(threads))
-        results = [make_scene(job, require_clean, kill_first_attempt=None) for job in todo]
+        for job in todo:
+            keep(job, make_scene(job, require_clean, kill_first_attempt=None))
     else:
         import ray
 
@@ -106,16 +117,14 @@ def run(
             ray.cloudpickle.register_pickle_by_value(sys.modules[__name__])
         try:
             task = ray.remote(num_cpus=1, max_retries=3)(make_scene)
-            refs = [task.remote(job, require_clean, kill_first_attempt) for job in todo]
-            results = ray.get(refs)
+            pending = {task.remote(job, require_clean, kill_first_attempt): job for job in todo}
+            while pending:
+                ready, _ = ray.wait(list(pending), num_returns=min(64, len(pending)), timeout=1.0)
+                for ref in ready:
+                    keep(pending.pop(ref), ray.get(ref))
         finally:
             ray.shutdown()
     elapsed = time.perf_counter() - start
-    written = 0
-    for job, data in zip(todo, results):
-        if data is not None:
-            write_atomic(os.path.join(out, out_name(job)), data)
-            written += 1
     return {
         "jobs": len(todo),
         "written": written,
