@@ -19,11 +19,20 @@
 //!
 //! Sitting and lying also need the pelvis settled, moving up or down slower than `settle_speed`
 //! (a person sitting down is not yet supported where they will sit). Then a majority vote over
-//! `smooth` seconds, and spans shorter than `min_span` joined to the span before them. It does not
-//! know what the person touches or sits on: that is the generator's job.
+//! `smooth` seconds, and spans shorter than `min_span` joined to the span before them.
+//!
+//! Last, a touch needs room for what is touched: a span stays a touch only if the column under its
+//! contact box (`human::contact_boxes`: the 12 cm cube the palm presses on, down to the floor —
+//! the least a standing piece under the hand fills) stays clear of the same person's bones, by
+//! more than `touch_room_tolerance`, at every frame more than `touch_room_margin` seconds from the
+//! span. Otherwise no piece could hold the hand without standing in the person's way at another
+//! time (a hand on playground bars the person later walks under, an arm held out in a gesture
+//! where they then walk), and the span is standing. The labeller does not know what the person
+//! touches or sits on: that is the generator's job.
 
-use crate::human::Joint;
-use crate::scene::{Action, ActionSpan};
+use crate::geom::OBox;
+use crate::human::{Body, Joint, contact_boxes};
+use crate::scene::{Action, ActionSpan, Human};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
@@ -60,6 +69,12 @@ pub struct LabelConfig {
     pub smooth: f64,
     /// Shortest span (s); shorter ones join the span before them. Default 0.3.
     pub min_span: f64,
+    /// Seconds either side of a touch span in which the person's bones may enter the column under
+    /// its contact box (reaching for it, letting go). Default 0.5.
+    pub touch_room_margin: f64,
+    /// How deep (m) a bone may reach into that column at other times: the check's tolerance.
+    /// Default 0.02.
+    pub touch_room_tolerance: f64,
 }
 
 impl Default for LabelConfig {
@@ -78,6 +93,8 @@ impl Default for LabelConfig {
             spread_arms: 0.6,
             smooth: 0.5,
             min_span: 0.3,
+            touch_room_margin: 0.5,
+            touch_room_tolerance: 0.02,
         }
     }
 }
@@ -148,8 +165,59 @@ pub fn label_frames(frames: &[[DVec3; 19]], fps: f64, stature: f64, cfg: &LabelC
             })
             .collect();
     let voted = majority(&raw, (cfg.smooth * fps * 0.5).round() as usize);
-    join_short(voted, ((cfg.min_span * fps).round() as usize).max(1))
+    let mut labels = join_short(voted, ((cfg.min_span * fps).round() as usize).max(1));
+    for span in touches_without_room(frames, &labels, fps, stature, cfg) {
+        labels[span.start..span.end].fill(Action::Stand);
+    }
+    labels
 }
+
+/// The touch spans of `labels` whose contact box has no room under it (module header).
+fn touches_without_room(
+    frames: &[[DVec3; 19]],
+    labels: &[Action],
+    fps: f64,
+    stature: f64,
+    cfg: &LabelConfig,
+) -> Vec<ActionSpan> {
+    let spans = runs(labels);
+    if !spans.iter().any(|s| s.action == Action::Touch) {
+        return Vec::new();
+    }
+    let human = Human {
+        id: "h".into(),
+        skeleton: Body::new(stature).skeleton(),
+        fps,
+        frames: frames.iter().map(|f| f.iter().map(|p| p.to_array()).collect()).collect(),
+        actions: spans.clone(),
+    };
+    let margin = (cfg.touch_room_margin * fps).round() as usize;
+    contact_boxes(&human)
+        .into_iter()
+        .filter(|b| b.action == Action::Touch)
+        .filter(|b| {
+            let top = b.obox.center.z + b.obox.half().z;
+            let column =
+                OBox::new(b.obox.center.truncate().extend(top * 0.5), b.obox.size.truncate().extend(top), b.obox.yaw);
+            let [start, end] = b.frames;
+            let away = (0..frames.len()).filter(|&f| f + margin < start || f >= end + margin);
+            away.into_iter().any(|f| {
+                human.skeleton.bones.iter().any(|bone| {
+                    let (a, c) = (frames[f][bone.a], frames[f][bone.b]);
+                    (0..=BONE_SAMPLES).any(|i| {
+                        let p = a.lerp(c, i as f64 / BONE_SAMPLES as f64);
+                        bone.radius - column.signed_distance(p) > cfg.touch_room_tolerance
+                    })
+                })
+            })
+        })
+        .filter_map(|b| spans.iter().find(|s| [s.start, s.end] == b.frames).cloned())
+        .collect()
+}
+
+/// Points tested along a bone against a touch's column (ends included): 2 cm apart or closer on
+/// a forearm, which is what a 12 cm column needs.
+const BONE_SAMPLES: usize = 16;
 
 /// Each frame's most common label within `half` frames either side (ties: its own, then the
 /// earliest in `ACTIONS`).
@@ -243,5 +311,28 @@ mod tests {
             reach(p, Side::Right, DVec3::Y);
         });
         assert!(label(&both).iter().all(|&a| a == Action::Touch));
+    }
+
+    #[test]
+    fn a_touch_needs_room_for_a_piece_the_person_does_not_stand_in_later() {
+        let cfg = LabelConfig::default();
+        // A second of a hand held forward (+y), then a second standing elsewhere.
+        let touch_then_stand_at = |y: f64| {
+            let mut frames = held(|p| reach(p, Side::Right, DVec3::Y));
+            let later = stand(&Body::default(), DVec2::new(0.0, y), 0.0).0;
+            frames.extend(std::iter::repeat_n(later, 30));
+            label_frames(&frames, 30.0, 1.75, &cfg)
+        };
+        // Stepping back 1 m leaves room for a piece under the hand: the touch stays.
+        let back = touch_then_stand_at(-1.0);
+        assert!(back[..20].iter().all(|&a| a == Action::Touch), "{back:?}");
+        // Standing where the hand was (0.75 m ahead): no piece could have been there.
+        let ahead = touch_then_stand_at(0.75);
+        assert!(!ahead.contains(&Action::Touch), "{ahead:?}");
+        // The same with a tolerance the standing body stays within: the touch stays.
+        let lax = LabelConfig { touch_room_tolerance: 1.0, ..cfg };
+        let mut frames = held(|p| reach(p, Side::Right, DVec3::Y));
+        frames.extend(std::iter::repeat_n(stand(&Body::default(), DVec2::new(0.0, 0.75), 0.0).0, 30));
+        assert!(label_frames(&frames, 30.0, 1.75, &lax)[..20].iter().all(|&a| a == Action::Touch));
     }
 }
