@@ -33,7 +33,7 @@
 use crate::geom::OBox;
 use crate::human::{Body, Joint, contact_boxes};
 use crate::scene::{Action, ActionSpan, Human};
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
 
 /// The labeller's thresholds (chosen on the calibrated val split's humans; docs/RESULTS.md).
@@ -192,16 +192,45 @@ fn touches_without_room(
         actions: spans.clone(),
     };
     let margin = (cfg.touch_room_margin * fps).round() as usize;
-    contact_boxes(&human)
+    // Each frame's body as a horizontal box (joints ± the thickest bone): most frames are far from
+    // a given column and are skipped by one comparison.
+    let thickest = human.skeleton.bones.iter().map(|b| b.radius).fold(0.0, f64::max);
+    let extents: Vec<(DVec2, DVec2)> = frames
+        .iter()
+        .map(|f| {
+            let (lo, hi) =
+                f.iter().fold((DVec2::MAX, DVec2::MIN), |(lo, hi), p| (lo.min(p.truncate()), hi.max(p.truncate())));
+            (lo - thickest, hi + thickest)
+        })
+        .collect();
+    // The frames where some joint has moved more than `KEY_MOVE` since the last one kept, each
+    // standing for the frames up to the next (a person standing still is one pose to test, not
+    // thousands).
+    let mut keys = vec![0];
+    for f in 1..frames.len() {
+        let last = &frames[*keys.last().expect("frame 0")];
+        if frames[f].iter().zip(last).any(|(p, q)| p.distance(*q) > KEY_MOVE) {
+            keys.push(f);
+        }
+    }
+    let boxes: Vec<_> = contact_boxes(&human).into_iter().filter(|b| b.action == Action::Touch).collect();
+    // Very long and busy clips with many touches: every k-th key, so that at most `MAX_TESTS`
+    // (span, key) pairs are tested (each then stands for k keys' frames).
+    let every = (boxes.len() * keys.len()).div_ceil(MAX_TESTS).max(1);
+    let keys: Vec<usize> = keys.into_iter().step_by(every).collect();
+    let until: Vec<usize> = keys.iter().skip(1).copied().chain([frames.len()]).collect();
+    boxes
         .into_iter()
-        .filter(|b| b.action == Action::Touch)
         .filter(|b| {
             let top = b.obox.center.z + b.obox.half().z;
             let column =
                 OBox::new(b.obox.center.truncate().extend(top * 0.5), b.obox.size.truncate().extend(top), b.obox.yaw);
             let [start, end] = b.frames;
-            let away = (0..frames.len()).filter(|&f| f + margin < start || f >= end + margin);
-            away.into_iter().any(|f| {
+            let (lo, hi) = column.footprint_aabb();
+            let near = |f: &usize| extents[*f].0.cmple(hi).all() && extents[*f].1.cmpge(lo).all();
+            // A key stands for frames `key..next`; it is tested when one of them is away from the span.
+            let away = keys.iter().zip(&until).filter(|&(&f, &next)| f + margin < start || next > end + margin);
+            away.map(|(&f, _)| f).filter(near).any(|f| {
                 human.skeleton.bones.iter().any(|bone| {
                     let (a, c) = (frames[f][bone.a], frames[f][bone.b]);
                     (0..=BONE_SAMPLES).any(|i| {
@@ -214,6 +243,15 @@ fn touches_without_room(
         .filter_map(|b| spans.iter().find(|s| [s.start, s.end] == b.frames).cloned())
         .collect()
 }
+
+/// Most (touch span, key frame) pairs the room test looks at: beyond, keys are thinned evenly. The
+/// shipped clips need at most 2,000; 50,000 frames of a person fidgeting through 400 touches
+/// would need 20 million (about 15 s).
+const MAX_TESTS: usize = 1 << 21;
+
+/// How far (m) a joint moves before the room test looks at a frame again: the frames between are
+/// within this of one tested, so a depth it misses is at most this much deeper than one it sees.
+const KEY_MOVE: f64 = 0.01;
 
 /// Points tested along a bone against a touch's column (ends included): 2 cm apart or closer on
 /// a forearm, which is what a 12 cm column needs.
