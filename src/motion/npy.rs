@@ -83,6 +83,16 @@ fn npy_file(bytes: &[u8]) -> Result<NpyFile<&[u8]>, String> {
             return Err(not(&format!("its header nests brackets more than {MAX_HEADER_DEPTH} deep")));
         }
     }
+    // npyz multiplies the shape's dimensions without checking (a shape of 22 × 5.5e16 × 3
+    // overflowed; found by the `motion` fuzz target): a shape whose size does not fit is refused.
+    let text = String::from_utf8_lossy(&bytes[prefix..prefix + header]);
+    if let Some(shape) = text.split("'shape'").nth(1).and_then(|t| t.split(')').next()) {
+        let dims = shape.trim_start_matches([':', ' ', '(']).split(',').map(str::trim).filter(|d| !d.is_empty());
+        let size = dims.map(|d| d.parse::<u64>().ok()).try_fold(1u64, |size, d| size.checked_mul(d?));
+        if size.is_none() {
+            return Err(not("its shape's size is too large to count"));
+        }
+    }
     NpyFile::new(bytes).map_err(|e| not(&e.to_string()))
 }
 

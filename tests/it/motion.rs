@@ -334,18 +334,22 @@ fn a_clip_that_leaves_the_floor_plan_is_an_error_naming_the_frame() {
     assert!(!out.exists());
 }
 
-/// A `.npy` whose dtype is a list nested `depth` deep.
-fn deep_header(depth: usize) -> Vec<u8> {
-    let dict = format!(
-        "{{'descr': {}'<f4'{}, 'fortran_order': False, 'shape': (2, 22, 3), }}\n",
-        "[".repeat(depth),
-        "]".repeat(depth)
-    );
+/// A `.npy` (version 1) with the header `dict` and 528 zero bytes of data.
+fn npy_with_header(dict: &str) -> Vec<u8> {
     let mut out = b"\x93NUMPY\x01\x00".to_vec();
     out.extend((dict.len() as u16).to_le_bytes());
     out.extend(dict.as_bytes());
     out.extend([0u8; 528]);
     out
+}
+
+/// A `.npy` whose dtype is a list nested `depth` deep.
+fn deep_header(depth: usize) -> Vec<u8> {
+    npy_with_header(&format!(
+        "{{'descr': {}'<f4'{}, 'fortran_order': False, 'shape': (2, 22, 3), }}\n",
+        "[".repeat(depth),
+        "]".repeat(depth)
+    ))
 }
 
 #[test]
@@ -373,6 +377,12 @@ fn bad_motion_files_are_one_line_and_exit_2() {
         ("garbage.npy", b"\x93NUMPY\x01\x00".to_vec(), "not a .npy array"),
         // Lists nested 20 deep in the header: npyz's parser took seconds (2^depth); found by fuzzing.
         ("deep_header.npy", deep_header(20), "nests brackets more than 4 deep"),
+        // A shape whose size overflows 64 bits: npyz multiplied it unchecked; found by fuzzing.
+        (
+            "overflowing_shape.npy",
+            npy_with_header("{'descr': '<f4', 'fortran_order': False, 'shape': (22, 5532811883532255151, 3), }\n"),
+            "its shape's size is too large to count",
+        ),
         // A header length of 4 GB: found by the `motion` fuzz target, which npyz allocated before reading.
         (
             "huge_header.npy",
