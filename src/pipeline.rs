@@ -16,6 +16,7 @@ use crate::repair::{RepairConfig, RepairReport, repair_scene};
 use crate::scene::{RoomType, Scene};
 use crate::sim::{CheckConfig, CheckReport, SimPhysics, check_scene};
 use rayon::prelude::*;
+use std::borrow::Borrow;
 use std::sync::Arc;
 
 /// How to make layouts.
@@ -148,19 +149,22 @@ pub fn room_groups(inputs: &[Scene]) -> Vec<(RoomType, Vec<usize>)> {
     groups
 }
 
-/// [`make_layouts`] for inputs of several room types: each group (the indices of its inputs, as
-/// [`room_groups`] gives them, and its generator) one after another, seeds numbered within the
+/// [`make_layouts`] for inputs of several room types: each group of [`room_groups`] with its
+/// generator (`generators[k]` for `groups[k]`) one after another, seeds numbered within the
 /// group; the layouts come back in input order. `progress` counts the layouts sampled over all
 /// groups.
-pub fn make_grouped_layouts(
+pub fn make_grouped_layouts<G: Borrow<Generator>>(
     inputs: &[Scene],
-    groups: &[(Vec<usize>, &Generator)],
+    groups: &[(RoomType, Vec<usize>)],
+    generators: &[G],
     opts: &LayoutOptions,
     progress: &mut dyn FnMut(usize),
 ) -> Result<Layouts, GenError> {
+    assert_eq!(groups.len(), generators.len(), "one generator per group");
     let mut out = Layouts { kept: vec![Vec::new(); inputs.len()], sampled: 0, accepted: 0 };
     let mut offset = 0;
-    for (members, generator) in groups {
+    for ((_, members), generator) in groups.iter().zip(generators) {
+        let generator = generator.borrow();
         let group: Vec<Scene> = members.iter().map(|&i| inputs[i].clone()).collect();
         let layouts = make_layouts(generator, &group, opts, &mut |done| progress(offset + done))?;
         offset += members.len() * opts.samples;

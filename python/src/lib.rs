@@ -265,10 +265,9 @@ fn generate<'py>(
         }
         generators.push(generator);
     }
-    let grouped: Vec<(Vec<usize>, &Generator)> =
-        groups.into_iter().zip(&generators).map(|((_, members), g)| (members, &**g)).collect();
     let opts = LayoutOptions { samples, seed, guidance, repair, require_clean, attempts, ..LayoutOptions::default() };
-    let layouts = detached(py, || make_grouped_layouts(&inputs, &grouped, &opts, &mut |_| {}))?.map_err(model_error)?;
+    let layouts = detached(py, || make_grouped_layouts(&inputs, &groups, &generators, &opts, &mut |_| {}))?
+        .map_err(model_error)?;
     let mut per_input = layouts.kept.into_iter().map(|kept| kept.into_iter().map(|l| PyScene::new(l.scene)).collect());
     if many {
         let lists: Vec<Vec<PyScene>> = per_input.collect();

@@ -54,9 +54,8 @@ pub fn run(args: &DemoArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     let groups = room_groups(&inputs);
     let generators: Vec<Generator> =
         groups.iter().map(|(room, _)| Ok(Generator::new(shipped_model(*room)?))).collect::<anyhow::Result<_>>()?;
-    let grouped: Vec<(Vec<usize>, &Generator)> =
-        groups.into_iter().zip(&generators).map(|((_, members), g)| (members, g)).collect();
-    let layouts = make_grouped_layouts(&inputs, &grouped, &opts, &mut |done| bar.set_position(done as u64))?;
+    let layouts =
+        make_grouped_layouts(&inputs, &groups, &generators, &opts, &mut |done| bar.set_position(done as u64))?;
     let generated: Vec<Vec<Scene>> =
         layouts.kept.into_iter().map(|kept| kept.into_iter().map(|l| l.scene).collect()).collect();
     bar.finish_and_clear();

@@ -159,9 +159,8 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
         })
         .collect::<anyhow::Result<_>>()?;
     let bar = super::progress::bar(global, (inputs.len() * args.samples) as u64, "generate");
-    let grouped: Vec<(Vec<usize>, &Generator)> =
-        groups.into_iter().zip(&generators).map(|((_, members), g)| (members, g)).collect();
-    let layouts = make_grouped_layouts(&inputs, &grouped, &opts, &mut |done| bar.set_position(done as u64))?;
+    let layouts =
+        make_grouped_layouts(&inputs, &groups, &generators, &opts, &mut |done| bar.set_position(done as u64))?;
     bar.finish_and_clear();
     let (kept, sampled, accepted) = (layouts.kept, layouts.sampled, layouts.accepted);
     std::fs::create_dir_all(&args.out).with_context(|| format!("{}: cannot create folder", args.out.display()))?;

@@ -21,6 +21,7 @@ use super::guidance::{GuidedObject, ObjectGradient};
 use crate::furniture::{Part, PartRole, template_of};
 use crate::scene::Human;
 use glam::{DVec2, DVec3};
+use std::collections::HashMap;
 use std::ops::Range;
 
 /// How far (m) bones are kept from pieces, except where they rest on a seat's top (the physics
@@ -153,15 +154,21 @@ struct Pose {
 fn distinct_poses(human: &Human, frames: Vec<usize>) -> Vec<Pose> {
     let middles: Vec<usize> = contact_middles(human).collect();
     let mut poses: Vec<Pose> = Vec::new();
+    // A pose's coordinates as bits (−0 as 0, so that equal numbers are one key) → its index.
+    let mut seen: HashMap<Vec<u64>, usize> = HashMap::new();
     for f in frames {
         let joints: Vec<DVec3> = human.frame(f).collect();
+        let key = joints.iter().flat_map(|p| p.to_array()).map(|x| (x + 0.0).to_bits()).collect();
         let contact = middles.contains(&f);
-        match poses.iter_mut().find(|p| p.joints == joints) {
-            Some(p) => {
-                p.weight += 1.0;
-                p.contact |= contact;
+        match seen.get(&key) {
+            Some(&k) => {
+                poses[k].weight += 1.0;
+                poses[k].contact |= contact;
             }
-            None => poses.push(Pose { joints, weight: 1.0, contact }),
+            None => {
+                seen.insert(key, poses.len());
+                poses.push(Pose { joints, weight: 1.0, contact });
+            }
         }
     }
     poses
