@@ -22,16 +22,17 @@
 //! `smooth` seconds, and spans shorter than `min_span` joined to the span before them.
 //!
 //! Last, a touch needs room for what is touched: a span stays a touch only if the column under its
-//! contact box (`human::contact_boxes`: the 12 cm cube the palm presses on, down to the floor —
-//! the least a standing piece under the hand fills) stays clear of the same person's bones, by
-//! more than `touch_room_tolerance`, at every frame more than `touch_room_margin` seconds from the
-//! span. Otherwise no piece could hold the hand without standing in the person's way at another
+//! contact box (`human::contact_boxes`: the 12 cm cube the palm presses on), down to the floor and
+//! on beyond the palm, away from the person, by `touch_room_depth` (the shallowest real piece a
+//! hand rests on: the least a standing piece under the hand fills), stays clear of the same
+//! person's bones, by more than `touch_room_tolerance`, at every frame more than
+//! `touch_room_margin` seconds from the span. Otherwise no piece could hold the hand without standing in the person's way at another
 //! time (a hand on playground bars the person later walks under, an arm held out in a gesture
 //! where they then walk), and the span is standing. The labeller does not know what the person
 //! touches or sits on: that is the generator's job.
 
 use crate::geom::OBox;
-use crate::human::{Body, Joint, contact_boxes};
+use crate::human::{Body, ContactBox, Joint, contact_boxes};
 use crate::scene::{Action, ActionSpan, Human};
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
@@ -75,6 +76,10 @@ pub struct LabelConfig {
     /// How deep (m) a bone may reach into that column at other times: the check's tolerance.
     /// Default 0.02.
     pub touch_room_tolerance: f64,
+    /// How far (m) that column reaches beyond the palm, away from the person (horizontally from
+    /// the pelvis to the palm, at the span's middle frame): the depth of the shallowest piece a
+    /// hand rests on (the catalog's shelves, 30 cm). Default 0.3.
+    pub touch_room_depth: f64,
 }
 
 impl Default for LabelConfig {
@@ -95,6 +100,7 @@ impl Default for LabelConfig {
             min_span: 0.3,
             touch_room_margin: 0.5,
             touch_room_tolerance: 0.02,
+            touch_room_depth: 0.3,
         }
     }
 }
@@ -222,11 +228,10 @@ fn touches_without_room(
     boxes
         .into_iter()
         .filter(|b| {
-            let top = b.obox.center.z + b.obox.half().z;
-            let column =
-                OBox::new(b.obox.center.truncate().extend(top * 0.5), b.obox.size.truncate().extend(top), b.obox.yaw);
             let [start, end] = b.frames;
-            let (lo, hi) = column.footprint_aabb();
+            let room = touch_room(b, frames[(start + end) / 2][Joint::Pelvis.index()], cfg.touch_room_depth);
+            let ((lo0, hi0), (lo1, hi1)) = (room[0].footprint_aabb(), room[1].footprint_aabb());
+            let (lo, hi) = (lo0.min(lo1), hi0.max(hi1));
             let near = |f: &usize| extents[*f].0.cmple(hi).all() && extents[*f].1.cmpge(lo).all();
             // A key stands for frames `key..next`; it is tested when one of them is away from the span.
             let away = keys.iter().zip(&until).filter(|&(&f, &next)| f + margin < start || next > end + margin);
@@ -235,13 +240,31 @@ fn touches_without_room(
                     let (a, c) = (frames[f][bone.a], frames[f][bone.b]);
                     (0..=BONE_SAMPLES).any(|i| {
                         let p = a.lerp(c, i as f64 / BONE_SAMPLES as f64);
-                        bone.radius - column.signed_distance(p) > cfg.touch_room_tolerance
+                        let depth = bone.radius - room[0].signed_distance(p).min(room[1].signed_distance(p));
+                        depth > cfg.touch_room_tolerance
                     })
                 })
             })
         })
         .filter_map(|b| spans.iter().find(|s| [s.start, s.end] == b.frames).cloned())
         .collect()
+}
+
+/// The room a touch needs (module header), as two boxes from the floor to the top of touch box `b`:
+/// the column under the box, and the column from the palm to `depth` beyond it, away from `pelvis`
+/// (in the box's facing where the palm is above the pelvis).
+fn touch_room(b: &ContactBox, pelvis: DVec3, depth: f64) -> [OBox; 2] {
+    let palm = b.obox.center.truncate();
+    let (sn, cs) = b.obox.yaw.sin_cos();
+    let away = (palm - pelvis.truncate()).try_normalize().unwrap_or(DVec2::new(-sn, cs));
+    let top = b.obox.center.z + b.obox.half().z;
+    let column = OBox::new(palm.extend(top * 0.5), b.obox.size.truncate().extend(top), b.obox.yaw);
+    let beyond = OBox::new(
+        (palm + away * (depth * 0.5)).extend(top * 0.5),
+        DVec3::new(b.obox.size.x, depth, top),
+        (-away.x).atan2(away.y),
+    );
+    [column, beyond]
 }
 
 /// Most (touch span, key frame) pairs the room test looks at: beyond, keys are thinned evenly. The
@@ -372,5 +395,39 @@ mod tests {
         let mut frames = held(|p| reach(p, Side::Right, DVec3::Y));
         frames.extend(std::iter::repeat_n(stand(&Body::default(), DVec2::new(0.0, 0.75), 0.0).0, 30));
         assert!(label_frames(&frames, 30.0, 1.75, &lax)[..20].iter().all(|&a| a == Action::Touch));
+    }
+
+    #[test]
+    fn a_touch_needs_room_beyond_the_hand_for_the_shallowest_piece() {
+        let cfg = LabelConfig::default();
+        let hand = held(|p| reach(p, Side::Right, DVec3::Y));
+        let palm = hand[0][Joint::RightWrist.index()].y;
+        // A second of the hand held forward (+y), then a second standing with the back of the body
+        // `gap` beyond the palm (the torso is about 0.15 m deep behind the pelvis).
+        let touch_then_stand_beyond = |gap: f64, cfg: &LabelConfig| {
+            let mut frames = hand.clone();
+            let later = stand(&Body::default(), DVec2::new(0.0, palm + gap + 0.15), 0.0).0;
+            frames.extend(std::iter::repeat_n(later, 30));
+            label_frames(&frames, 30.0, 1.75, cfg)
+        };
+        // 15 cm beyond the palm: clear of the column under the hand, but inside a 30 cm shelf.
+        let near = touch_then_stand_beyond(0.15, &cfg);
+        assert!(!near.contains(&Action::Touch), "{near:?}");
+        // Without the depth (the column alone) that touch stayed.
+        let column_only = touch_then_stand_beyond(0.15, &LabelConfig { touch_room_depth: 0.0, ..cfg });
+        assert!(column_only[..20].iter().all(|&a| a == Action::Touch), "{column_only:?}");
+        // 60 cm beyond: room for the shelf, and the touch stays.
+        let far = touch_then_stand_beyond(0.6, &cfg);
+        assert!(far[..20].iter().all(|&a| a == Action::Touch), "{far:?}");
+    }
+
+    #[test]
+    fn the_touch_room_depth_is_the_shallowest_touchable_piece() {
+        let shallowest = crate::scene::Category::ALL
+            .iter()
+            .filter(|c| c.affords(Action::Touch))
+            .map(|&c| crate::furniture::size_range(c, 1).0.min(crate::furniture::size_range(c, 0).0))
+            .fold(f64::INFINITY, f64::min);
+        assert!((LabelConfig::default().touch_room_depth - shallowest).abs() < 0.005, "{shallowest}");
     }
 }
