@@ -1,7 +1,10 @@
 //! Writes the hand-built generation inputs in `tests/inputs/` — rooms and motions made by hand,
 //! unlike the procedural training data: a tight bedroom, a walker close behind a person seated at a
 //! desk, a walker through the middle of a living room, three sitters side by side as on one sofa,
-//! a dining room with sitters on both sides of one table.
+//! a dining room with sitters on both sides of one table; an L-shaped living room with two sitters
+//! side by side and a walker round the corner, a bedroom with a sleeper, a person at a desk and a
+//! walker between them, four diners with a walker behind one row, a reader and a person reaching
+//! up to a wall shelf; and one input no layout can make pass (a sitter's feet in the wall).
 //!
 //! ```sh
 //! cargo run --release --example hand_built_inputs -- tests/inputs
@@ -9,9 +12,9 @@
 //!
 //! The files are committed; this program is how they were made (deterministic).
 
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 use shade_sim::geom::Polyline;
-use shade_sim::human::{Body, Motion, sit, stand};
+use shade_sim::human::{Body, Motion, Side, lie, sit, stand, touch};
 use shade_sim::scene::{Action, FloorPlan, Human, RoomType, Scene};
 use std::path::PathBuf;
 
@@ -42,6 +45,20 @@ fn stander(id: &str, at: [f64; 2], yaw_deg: f64) -> Human {
     let body = Body::new(1.68);
     let mut m = Motion::new(body, FPS);
     m.hold(stand(&body, DVec2::from(at), yaw_deg.to_radians()), 20, Action::Stand);
+    m.into_human(id)
+}
+
+fn lier(id: &str, at: [f64; 2], surface: f64, yaw_deg: f64) -> Human {
+    let body = Body::new(1.7);
+    let mut m = Motion::new(body, FPS);
+    m.hold(lie(&body, DVec2::from(at), surface, yaw_deg.to_radians()), 20, Action::Lie);
+    m.into_human(id)
+}
+
+fn toucher(id: &str, palm: [f64; 3], yaw_deg: f64) -> Human {
+    let body = Body::new(1.7);
+    let mut m = Motion::new(body, FPS);
+    m.hold(touch(&body, DVec3::from(palm), yaw_deg.to_radians(), Side::Right), 20, Action::Touch);
     m.into_human(id)
 }
 
@@ -107,6 +124,74 @@ fn main() -> anyhow::Result<()> {
                     sitter("head", [1.2, 1.8], 0.46, -90.0),
                     walker("serve", &[[3.8, 0.4], [3.8, 3.2]]),
                 ],
+            ),
+        ),
+        // An L-shaped living room: two sitters side by side against the far wall of the L's arm,
+        // a walker coming round its inner corner.
+        (
+            "l_living_pair_and_walker",
+            scene(
+                RoomType::Living,
+                FloorPlan {
+                    polygon: vec![[0.0, 0.0], [6.0, 0.0], [6.0, 3.0], [3.5, 3.0], [3.5, 5.0], [0.0, 5.0]],
+                    height: 2.7,
+                },
+                vec![
+                    sitter("left", [1.2, 4.45], 0.43, 180.0),
+                    sitter("right", [1.85, 4.45], 0.43, 180.0),
+                    walker("round", &[[5.6, 1.5], [2.5, 1.5], [2.5, 3.0]]),
+                ],
+            ),
+        ),
+        // A sleeper, a person at a desk facing the bottom wall, and a walker from the door between them.
+        (
+            "bedroom_sleeper_desk_walker",
+            scene(
+                RoomType::Bedroom,
+                rect(4.0, 3.6),
+                vec![
+                    lier("sleeper", [1.2, 2.4], 0.5, 0.0),
+                    sitter("desk", [3.4, 0.95], 0.46, 180.0),
+                    walker("door", &[[3.7, 3.3], [2.6, 1.6], [0.4, 0.4]]),
+                ],
+            ),
+        ),
+        // Four diners, two a side, and a walker 0.85 m behind the north row.
+        (
+            "dining_four_walker_behind",
+            scene(
+                RoomType::Dining,
+                rect(4.5, 4.0),
+                vec![
+                    sitter("north_1", [1.9, 2.7], 0.46, 180.0),
+                    sitter("north_2", [2.6, 2.7], 0.46, 180.0),
+                    sitter("south_1", [1.9, 1.3], 0.46, 0.0),
+                    sitter("south_2", [2.6, 1.3], 0.46, 0.0),
+                    walker("behind", &[[0.3, 3.55], [4.2, 3.55]]),
+                ],
+            ),
+        ),
+        // A reader in the middle, a person reaching up to a shelf in a corner, a walker between.
+        (
+            "living_reader_and_shelf",
+            scene(
+                RoomType::Living,
+                rect(5.0, 4.0),
+                vec![
+                    sitter("reader", [2.5, 1.0], 0.44, 0.0),
+                    toucher("reach", [4.5, 3.6, 1.2], 0.0),
+                    walker("cross", &[[0.4, 3.5], [3.0, 2.6]]),
+                ],
+            ),
+        ),
+        // The person at the desk sits too close to the wall they face: their feet are in it, and
+        // no layout can pass the check.
+        (
+            "sitter_feet_in_the_wall",
+            scene(
+                RoomType::Bedroom,
+                rect(4.0, 3.6),
+                vec![sitter("desk", [3.4, 0.55], 0.46, 180.0), walker("door", &[[3.7, 3.3], [0.4, 1.6]])],
             ),
         ),
     ];

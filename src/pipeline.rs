@@ -1,7 +1,9 @@
 //! The one way from inputs to checked layouts, for the command line and library users alike:
 //! sample with the generator (guidance during sampling), repair each sample ([`crate::repair`]),
 //! `check` it ([`crate::sim`]) and, with `require_clean`, resample with new seeds until each input
-//! has its layouts or the attempts are spent.
+//! has its layouts or the attempts are spent. An input whose people are in a wall (`check` fails
+//! it whatever the layout, [`people_in_walls`]) is not resampled: its layouts are sampled once, and
+//! under `require_clean` none are kept.
 //!
 //! Inputs of several room types go through [`make_grouped_layouts`]: each type's inputs with its
 //! own generator, seeds numbered within the type ([`room_groups`]), so the command line's folder
@@ -14,7 +16,7 @@ use crate::generator::{GenError, Generator, GuidanceConfig};
 use crate::physics::Physics;
 use crate::repair::{RepairConfig, RepairReport, repair_scene};
 use crate::scene::{RoomType, Scene};
-use crate::sim::{CheckConfig, CheckReport, SimPhysics, check_scene};
+use crate::sim::{CheckConfig, CheckReport, SimPhysics, Violation, check_scene, people_in_walls};
 use rayon::prelude::*;
 use std::borrow::Borrow;
 use std::sync::Arc;
@@ -75,6 +77,9 @@ pub struct Layouts {
     pub sampled: usize,
     /// Layouts that passed the check (under `require_clean`).
     pub accepted: usize,
+    /// Per input: its people's bones in the walls (under `require_clean`; empty for an input some
+    /// layout could make pass).
+    pub people_in_walls: Vec<Vec<Violation>>,
 }
 
 /// The seed of resampling round `round` for the run seed `seed` (round 0 is the seed itself, so a
@@ -98,9 +103,17 @@ pub fn make_layouts(
     let phys = physics.clone();
     let mut factory = move |scenes: &[&Scene]| guidance.for_batch(&meta.model, &meta.bounds, scenes, &phys);
     let rounds = if opts.require_clean { opts.attempts.max(1) } else { 1 };
-    let mut out = Layouts { kept: vec![Vec::new(); inputs.len()], sampled: 0, accepted: 0 };
+    let people_in_walls: Vec<Vec<Violation>> = if opts.require_clean {
+        inputs.par_iter().map(|s| people_in_walls(s, &opts.check)).collect()
+    } else {
+        vec![Vec::new(); inputs.len()]
+    };
+    let mut out = Layouts { kept: vec![Vec::new(); inputs.len()], sampled: 0, accepted: 0, people_in_walls };
     for round in 0..rounds {
-        let wanted: Vec<usize> = (0..inputs.len()).filter(|&i| out.kept[i].len() < opts.samples).collect();
+        // No round makes a layout pass for people in a wall: they get the first round's samples only.
+        let hopeless = |i: usize| round > 0 && !out.people_in_walls[i].is_empty();
+        let wanted: Vec<usize> =
+            (0..inputs.len()).filter(|&i| out.kept[i].len() < opts.samples && !hopeless(i)).collect();
         if wanted.is_empty() {
             break;
         }
@@ -161,7 +174,12 @@ pub fn make_grouped_layouts<G: Borrow<Generator>>(
     progress: &mut dyn FnMut(usize),
 ) -> Result<Layouts, GenError> {
     assert_eq!(groups.len(), generators.len(), "one generator per group");
-    let mut out = Layouts { kept: vec![Vec::new(); inputs.len()], sampled: 0, accepted: 0 };
+    let mut out = Layouts {
+        kept: vec![Vec::new(); inputs.len()],
+        sampled: 0,
+        accepted: 0,
+        people_in_walls: vec![Vec::new(); inputs.len()],
+    };
     let mut offset = 0;
     for ((_, members), generator) in groups.iter().zip(generators) {
         let generator = generator.borrow();
@@ -170,8 +188,9 @@ pub fn make_grouped_layouts<G: Borrow<Generator>>(
         offset += members.len() * opts.samples;
         out.sampled += layouts.sampled;
         out.accepted += layouts.accepted;
-        for (&i, kept) in members.iter().zip(layouts.kept) {
+        for ((&i, kept), walls) in members.iter().zip(layouts.kept).zip(layouts.people_in_walls) {
             out.kept[i] = kept;
+            out.people_in_walls[i] = walls;
         }
     }
     Ok(out)

@@ -162,6 +162,20 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
     let layouts =
         make_grouped_layouts(&inputs, &groups, &generators, &opts, &mut |done| bar.set_position(done as u64))?;
     bar.finish_and_clear();
+    for (file, walls) in files.iter().zip(&layouts.people_in_walls) {
+        if let Some(worst) = walls.iter().max_by(|a, b| a.depth.total_cmp(&b.depth)) {
+            tracing::warn!(
+                "{}: no layout can pass the check: {}'s {} is {:.3} m into {} at frame {} ({} such episodes); it was not resampled",
+                file.display(),
+                worst.human.as_deref().unwrap_or("?"),
+                worst.bone.as_deref().unwrap_or("?"),
+                worst.depth,
+                worst.object.as_deref().unwrap_or("a wall"),
+                worst.frame.unwrap_or(0),
+                walls.len()
+            );
+        }
+    }
     let (kept, sampled, accepted) = (layouts.kept, layouts.sampled, layouts.accepted);
     std::fs::create_dir_all(&args.out).with_context(|| format!("{}: cannot create folder", args.out.display()))?;
     let mut rows = Vec::new();

@@ -75,6 +75,13 @@ fn owner_id(scene: &Scene, owner: Owner) -> String {
     }
 }
 
+/// The violations no layout can mend: the people's bones deeper than `cfg.tolerance` in the walls
+/// (an input whose people stand or sit in a wall has no layout that passes [`check_scene`]).
+pub fn people_in_walls(scene: &Scene, cfg: &CheckConfig) -> Vec<Violation> {
+    let walls = wall_solids(scene);
+    scene.humans.iter().flat_map(|h| penetrations(scene, h, &walls, cfg.tolerance)).collect()
+}
+
 /// Runs every check on a (validated) scene.
 pub fn check_scene(scene: &Scene, cfg: &CheckConfig) -> CheckReport {
     let furniture = furniture_solids(scene);

@@ -13,7 +13,7 @@ mod solids;
 mod stability;
 mod violation;
 
-pub use check::{CheckConfig, CheckReport, capsule_depth, capsule_depth_beyond, check_scene};
+pub use check::{CheckConfig, CheckReport, capsule_depth, capsule_depth_beyond, check_scene, people_in_walls};
 #[cfg(feature = "mujoco")]
 pub use mujoco::mujoco_replay;
 pub use physics::SimPhysics;

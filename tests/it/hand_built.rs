@@ -5,8 +5,13 @@
 use crate::{shade_sim, stderr};
 
 /// Each input and whether `generate --require-clean --seed 0` finds a layout `check` passes.
-const EXPECTED: [(&str, bool); 5] = [
+const EXPECTED: [(&str, bool); 10] = [
+    ("bedroom_sleeper_desk_walker", true),
+    ("dining_four_walker_behind", true),
     ("dinner_for_three", true),
+    ("l_living_pair_and_walker", true),
+    ("living_reader_and_shelf", true),
+    ("sitter_feet_in_the_wall", false),
     ("three_on_a_sofa", true),
     ("tight_bedroom", true),
     ("walker_behind_sitter", true),
@@ -41,4 +46,36 @@ fn require_clean_on_hand_built_inputs_gives_the_recorded_outcome() {
             assert_eq!(check.status.code(), Some(0), "{name}: {}", String::from_utf8_lossy(&check.stdout));
         }
     }
+}
+
+#[test]
+fn people_in_a_wall_are_named_and_not_resampled() {
+    // The sitter's feet are 10 cm in the wall they face: no layout passes, and generate says why
+    // instead of sampling all its attempts.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let run = shade_sim(&[
+        "--no-progress",
+        "--json",
+        "generate",
+        "--input",
+        "tests/inputs/sitter_feet_in_the_wall.json",
+        "--out",
+        out.to_str().unwrap(),
+        "--require-clean",
+        "--samples",
+        "2",
+        "--attempts",
+        "5",
+    ]);
+    assert_eq!(run.status.code(), Some(1), "{}", stderr(&run));
+    let err = stderr(&run);
+    assert!(
+        err.contains("sitter_feet_in_the_wall.json: no layout can pass the check: desk's")
+            && err.contains("m into wall0 at frame 0"),
+        "{err}"
+    );
+    let report: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+    assert_eq!(report["sampled"], 2, "one round of 2 samples, not 5: {report}");
+    assert_eq!(report["inputs_without_clean_layout"], 1);
 }
