@@ -14,7 +14,8 @@
 //!
 //! J_s (ours) is its other half, support: for a piece anchored to a sitter's or a sleeper's contact
 //! box, how far the top of the piece's parts under the box's centre stays below the box's top (the
-//! body's lowest point) beyond [`SUPPORT_TOLERANCE`]. J_c keeps the piece under its person, J_p
+//! body's lowest point) beyond [`SUPPORT_TOLERANCE`]; for a toucher's, below the palm (the box's
+//! centre), where the piece is under it (a tall piece touched on its front is not). J_c keeps the piece under its person, J_p
 //! keeps it out of the body, J_s keeps it up against it.
 
 use super::guidance::{GuidedObject, ObjectGradient};
@@ -323,8 +324,8 @@ fn support_gap(o: &GuidedObject, need: &SupportNeed) -> f64 {
     if top.is_finite() { (need.height - SUPPORT_TOLERANCE - top).max(0.0) } else { 0.0 }
 }
 
-/// Σ over anchored pieces of J_s; `needs[i]` is what piece i's sitters and sleepers need (none for
-/// free pieces and touched ones). Gradients as [`body_penetration`]'s.
+/// Σ over anchored pieces of J_s; `needs[i]` is what piece i's sitters, sleepers and touchers need
+/// (none for free pieces). Gradients as [`body_penetration`]'s.
 pub fn support_shortfall(objects: &[GuidedObject], needs: &[Vec<SupportNeed>]) -> (f64, Vec<ObjectGradient>) {
     let mut total = 0.0;
     let mut grads = vec![[0.0; 7]; objects.len()];

@@ -59,7 +59,8 @@ pub struct GuidanceConfig {
     /// Weight of J_p (people's bones inside pieces, metres of depth; [`super::bodies`]).
     #[serde(default)]
     pub body: f64,
-    /// Weight of J_s (a sitter's or sleeper's piece too low under them, metres; [`super::bodies`]).
+    /// Weight of J_s (a sitter's, sleeper's or toucher's piece too low under them, metres;
+    /// [`super::bodies`]).
     #[serde(default)]
     pub support: f64,
     /// Step size γ (token units per unit of weighted J gradient).
@@ -375,7 +376,8 @@ pub struct Footprint {
     pub mask: Mask,
     /// Their area (m²).
     pub area: f64,
-    /// What a sitter or sleeper needs of the piece's height (J_s); `None` for a touch.
+    /// What the person needs of the piece's height (J_s): a sitter's or sleeper's support
+    /// surface, a toucher's palm (the box's centre), where the piece is under it.
     pub support: Option<SupportNeed>,
     /// The box's centre (x, y).
     pub center: DVec2,
@@ -386,8 +388,11 @@ impl Footprint {
     pub fn of(window: &RoomWindow, b: &ContactBox) -> Footprint {
         let mask = Mask::of_footprint(window, &b.obox);
         let area = mask.count() as f64 * window.pixel_area();
-        let support = matches!(b.action, Action::Sit | Action::Lie)
-            .then(|| SupportNeed { at: b.obox.center.truncate(), height: b.obox.z_range().1 });
+        let height = match b.action {
+            Action::Touch => b.obox.center.z,
+            _ => b.obox.z_range().1,
+        };
+        let support = Some(SupportNeed { at: b.obox.center.truncate(), height });
         Footprint { mask, area, support, center: b.obox.center.truncate() }
     }
 }
@@ -1048,6 +1053,31 @@ mod tests {
         // Turned a quarter, the piece's footprint is the same square: the same distance.
         let turned = GuidedObject { yaw: std::f64::consts::FRAC_PI_2, ..far[0] };
         assert!((contact_shortfall(&[turned], &[vec![&mask]], &w).0 - j).abs() < 1e-3);
+    }
+
+    #[test]
+    fn a_touched_piece_must_reach_up_to_the_palm() {
+        // A palm (its 12 cm box centred at 0.85 m) over a table 0.65 m tall: J_s is the 20 cm the
+        // top stays below the palm, less the 2 cm tolerated, and growing the table lowers it.
+        let b = ContactBox {
+            human: "h".into(),
+            action: Action::Touch,
+            frames: [0, 1],
+            obox: OBox::new(DVec3::new(2.0, 2.0, 0.85), DVec3::splat(0.12), 0.0),
+        };
+        let need = Footprint::of(&window(), &b).support.expect("a touch needs its piece up to the palm");
+        assert!((need.height - 0.85).abs() < 1e-12);
+        let table = |h: f64| GuidedObject {
+            center: DVec3::new(2.0, 2.1, h * 0.5),
+            size: DVec3::new(1.2, 0.8, h),
+            yaw: 0.0,
+            hanging: false,
+            category: Category::Table,
+        };
+        let (j, g) = support_shortfall(&[table(0.65)], &[vec![need]]);
+        assert!((j - 0.18).abs() < 1e-9, "{j}");
+        assert!(g[0][5] < 0.0, "{:?}", g[0]);
+        assert_eq!(support_shortfall(&[table(0.84)], &[vec![need]]).0, 0.0);
     }
 
     #[test]
