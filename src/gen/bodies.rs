@@ -302,13 +302,13 @@ pub fn body_penetration(objects: &[GuidedObject], bodies: &BodyBalls) -> (f64, V
     (total, grads)
 }
 
-/// Where a sitter or sleeper needs support: the centre of their contact box and its top (the
-/// body's lowest point).
+/// Where a person needs support: the centre of their contact box and the height the piece's top
+/// must reach (a sitter's or sleeper's box top, the body's lowest point; a toucher's palm).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SupportNeed {
     /// The contact box's centre on the floor.
     pub at: DVec2,
-    /// The height of the body's lowest point.
+    /// The height the top of the piece under `at` must reach.
     pub height: f64,
 }
 
