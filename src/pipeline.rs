@@ -82,6 +82,21 @@ pub struct Layouts {
     pub people_in_walls: Vec<Vec<Violation>>,
 }
 
+/// Why no layout of an input can pass the check, from its [`Layouts::people_in_walls`] (`None` when
+/// some layout could): the deepest bone in a wall.
+pub fn people_in_walls_message(walls: &[Violation]) -> Option<String> {
+    let worst = walls.iter().max_by(|a, b| a.depth.total_cmp(&b.depth))?;
+    Some(format!(
+        "no layout can pass the check: {}'s {} is {:.3} m into {} at frame {} ({} such episodes); it was not resampled",
+        worst.human.as_deref().unwrap_or("?"),
+        worst.bone.as_deref().unwrap_or("?"),
+        worst.depth,
+        worst.object.as_deref().unwrap_or("a wall"),
+        worst.frame.unwrap_or(0),
+        walls.len()
+    ))
+}
+
 /// The seed of resampling round `round` for the run seed `seed` (round 0 is the seed itself, so a
 /// clean first sample is the same as without `require_clean`).
 pub fn round_seed(seed: u64, round: usize) -> u64 {

@@ -17,7 +17,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 use shade_sim::export::{MjcfOptions, mocap_motion, robot_spot, scene_mjcf};
 use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig, shipped_model};
-use shade_sim::pipeline::{LayoutOptions, make_grouped_layouts, room_groups};
+use shade_sim::pipeline::{LayoutOptions, make_grouped_layouts, people_in_walls_message, room_groups};
 use shade_sim::repair::RepairConfig;
 use shade_sim::scene::{RoomType, Scene};
 use shade_sim::sim::{CheckConfig, check_scene};
@@ -268,6 +268,13 @@ fn generate<'py>(
     let opts = LayoutOptions { samples, seed, guidance, repair, require_clean, attempts, ..LayoutOptions::default() };
     let layouts = detached(py, || make_grouped_layouts(&inputs, &groups, &generators, &opts, &mut |_| {}))?
         .map_err(model_error)?;
+    // As the command line's warning: an input whose people are in a wall has no clean layout.
+    for (i, walls) in layouts.people_in_walls.iter().enumerate() {
+        if let Some(why) = people_in_walls_message(walls) {
+            let message = std::ffi::CString::new(format!("input {i}: {why}")).expect("no NUL in the message");
+            PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &message, 1)?;
+        }
+    }
     let mut per_input = layouts.kept.into_iter().map(|kept| kept.into_iter().map(|l| PyScene::new(l.scene)).collect());
     if many {
         let lists: Vec<Vec<PyScene>> = per_input.collect();

@@ -42,6 +42,17 @@ def test_require_clean_layouts_pass_the_check_and_unrepaired_ones_mostly_do_not(
     assert kinds <= {"penetration", "unsupported", "object_overlap", "object_wall", "outside_floor", "unstable"}
 
 
+def test_people_in_a_wall_are_named_in_a_warning_and_get_no_layout(root):
+    import os
+
+    import pytest
+
+    path = os.path.join(root, "tests", "inputs", "sitter_feet_in_the_wall.json")
+    with pytest.warns(UserWarning, match=r"input 0: no layout can pass the check: desk's .* m into wall0"):
+        layouts = shade_sim.generate(path, seed=0, require_clean=True, attempts=3)
+    assert layouts == []
+
+
 def test_check_reports_two_overlapping_pieces(root):
     raw = shade_sim.load_scene(f"{root}/scenes/reference/bedroom_rect.json").to_dict()
     first = raw["objects"][0]

@@ -8,7 +8,7 @@ use super::{ExitStatus, GlobalArgs};
 use anyhow::Context;
 use clap::Args;
 use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig, shipped_model};
-use shade_sim::pipeline::{LayoutOptions, make_grouped_layouts, room_groups};
+use shade_sim::pipeline::{LayoutOptions, make_grouped_layouts, people_in_walls_message, room_groups};
 use shade_sim::repair::{RepairConfig, RepairTotals};
 use shade_sim::scene::{RoomType, Scene};
 use std::path::{Path, PathBuf};
@@ -163,17 +163,8 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
         make_grouped_layouts(&inputs, &groups, &generators, &opts, &mut |done| bar.set_position(done as u64))?;
     bar.finish_and_clear();
     for (file, walls) in files.iter().zip(&layouts.people_in_walls) {
-        if let Some(worst) = walls.iter().max_by(|a, b| a.depth.total_cmp(&b.depth)) {
-            tracing::warn!(
-                "{}: no layout can pass the check: {}'s {} is {:.3} m into {} at frame {} ({} such episodes); it was not resampled",
-                file.display(),
-                worst.human.as_deref().unwrap_or("?"),
-                worst.bone.as_deref().unwrap_or("?"),
-                worst.depth,
-                worst.object.as_deref().unwrap_or("a wall"),
-                worst.frame.unwrap_or(0),
-                walls.len()
-            );
+        if let Some(why) = people_in_walls_message(walls) {
+            tracing::warn!("{}: {why}", file.display());
         }
     }
     let (kept, sampled, accepted) = (layouts.kept, layouts.sampled, layouts.accepted);
