@@ -15,8 +15,8 @@
 //! J_s (ours) is its other half, support: for a piece anchored to a sitter's or a sleeper's contact
 //! box, how far the top of the piece's parts under the box's centre stays below the box's top (the
 //! body's lowest point) beyond [`SUPPORT_TOLERANCE`]; for a toucher's, below the palm (the box's
-//! centre), where the piece is under it (a tall piece touched on its front is not). J_c keeps the piece under its person, J_p
-//! keeps it out of the body, J_s keeps it up against it.
+//! centre), where the piece is under it (a tall piece touched on its front is not). J_c keeps the
+//! piece under its person, J_p keeps it out of the body, J_s keeps it up against it.
 
 use super::guidance::{GuidedObject, ObjectGradient};
 use crate::furniture::{Part, PartRole, template_of};

@@ -28,8 +28,8 @@
 //! person's bones, by more than `touch_room_tolerance`, at every frame more than
 //! `touch_room_margin` seconds from the span. Otherwise no piece could hold the hand without
 //! standing in the person's way at another time (a hand on playground bars the person later walks
-//! under, an arm held out in a gesture where they then walk), and the span is standing. The labeller does not know what the person
-//! touches or sits on: that is the generator's job.
+//! under, an arm held out in a gesture where they then walk), and the span is standing. The
+//! labeller does not know what the person touches or sits on: that is the generator's job.
 
 use crate::geom::OBox;
 use crate::human::{Body, ContactBox, Joint, contact_boxes};
