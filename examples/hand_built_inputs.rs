@@ -112,15 +112,16 @@ fn main() -> anyhow::Result<()> {
                 ],
             ),
         ),
-        // Two sitters across from each other and one at the head: one table between them.
+        // Two sitters across from each other (1.3 m apart: their feet clear of each other) and one at
+        // the head: one table between them.
         (
             "dinner_for_three",
             scene(
                 RoomType::Dining,
                 rect(4.2, 3.6),
                 vec![
-                    sitter("north", [2.1, 2.35], 0.46, 180.0),
-                    sitter("south", [2.1, 1.25], 0.46, 0.0),
+                    sitter("north", [2.1, 2.45], 0.46, 180.0),
+                    sitter("south", [2.1, 1.15], 0.46, 0.0),
                     sitter("head", [1.2, 1.8], 0.46, -90.0),
                     walker("serve", &[[3.8, 0.4], [3.8, 3.2]]),
                 ],

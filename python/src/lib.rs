@@ -20,7 +20,7 @@ use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig, shipped_model}
 use shade_sim::pipeline::{LayoutOptions, make_grouped_layouts, people_in_walls_message, room_groups};
 use shade_sim::repair::RepairConfig;
 use shade_sim::scene::{RoomType, Scene};
-use shade_sim::sim::{CheckConfig, check_scene};
+use shade_sim::sim::{CheckConfig, check_scene, people_meeting};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};
@@ -268,11 +268,14 @@ fn generate<'py>(
     let opts = LayoutOptions { samples, seed, guidance, repair, require_clean, attempts, ..LayoutOptions::default() };
     let layouts = detached(py, || make_grouped_layouts(&inputs, &groups, &generators, &opts, &mut |_| {}))?
         .map_err(model_error)?;
-    // As the command line's warning: an input whose people are in a wall has no clean layout.
-    for (i, walls) in layouts.people_in_walls.iter().enumerate() {
+    // As the command line's warnings: an input whose people are in a wall has no clean layout, and
+    // people inside each other are the input's doing.
+    for (i, (walls, input)) in layouts.people_in_walls.iter().zip(&inputs).enumerate() {
         if let Some(why) = people_in_walls_message(walls) {
-            let message = std::ffi::CString::new(format!("input {i}: {why}")).expect("no NUL in the message");
-            PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &message, 1)?;
+            user_warning(py, &format!("input {i}: {why}"))?;
+        }
+        for m in people_meeting(input, opts.check.tolerance) {
+            user_warning(py, &format!("input {i}: {m}"))?;
         }
     }
     let mut per_input = layouts.kept.into_iter().map(|kept| kept.into_iter().map(|l| PyScene::new(l.scene)).collect());
@@ -283,6 +286,12 @@ fn generate<'py>(
         let only: Vec<PyScene> = per_input.next().unwrap_or_default();
         Ok(only.into_pyobject(py)?.into_any())
     }
+}
+
+/// A Python `UserWarning` with `message`.
+fn user_warning(py: Python<'_>, message: &str) -> PyResult<()> {
+    let message = std::ffi::CString::new(message).expect("no NUL in the message");
+    PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &message, 1)
 }
 
 /// `repair=`: None or True (the default repair), False (none), or a repair config file's path.
@@ -299,13 +308,17 @@ fn repair_of(repair: Option<&Bound<'_, PyAny>>) -> PyResult<Option<RepairConfig>
 
 /// The physics check of a scene: every violation as a dict (kind, human, bone, object, other,
 /// frame, frames, depth; the keys `shade-sim check --json` writes). Empty: the scene passes.
-/// `stability=False` skips the furniture stability run (the slow part).
+/// `stability=False` skips the furniture stability run (the slow part). People inside each other
+/// (no layout causes or mends that) are a `UserWarning`.
 #[pyfunction]
 #[pyo3(signature = (scene, stability=true))]
 fn check<'py>(py: Python<'py>, scene: &Bound<'py, PyAny>, stability: bool) -> PyResult<Bound<'py, PyAny>> {
     let scene = scene_of(py, scene)?;
     let cfg = CheckConfig { stability, ..CheckConfig::default() };
     let report = detached(py, || check_scene(&scene, &cfg))?;
+    for m in people_meeting(&scene, cfg.tolerance) {
+        user_warning(py, &m.to_string())?;
+    }
     let text = serde_json::to_string(&report.violations).expect("violations serialise");
     py.import("json")?.call_method1("loads", (text,))
 }

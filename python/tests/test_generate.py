@@ -53,6 +53,28 @@ def test_people_in_a_wall_are_named_in_a_warning_and_get_no_layout(root):
     assert layouts == []
 
 
+def test_people_inside_each_other_are_a_warning_in_check_and_generate(root):
+    import warnings
+
+    import pytest
+
+    raw = shade_sim.load_scene(f"{root}/tests/inputs/three_on_a_sofa.json").to_dict()
+    # No one meets in the input as built.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        shade_sim.check(raw, stability=False)
+    # A fourth sitter 10 cm from the first: their bodies overlap, which is a warning, not a violation.
+    first = raw["humans"][0]
+    twin = dict(first, id="twin", frames=[[[x + 0.1, y, z] for x, y, z in frame] for frame in first["frames"]])
+    raw["humans"].append(twin)
+    with pytest.warns(UserWarning, match=r"left and twin are inside each other: left's .* m into twin's"):
+        found = shade_sim.check(raw, stability=False)
+    # With no furniture the sitters are unsupported, and that is all the check calls a violation.
+    assert {v["kind"] for v in found} == {"unsupported"}
+    with pytest.warns(UserWarning, match=r"input 0: left and twin are inside each other"):
+        shade_sim.generate(raw, seed=0, repair=False, guidance="none")
+
+
 def test_check_reports_two_overlapping_pieces(root):
     raw = shade_sim.load_scene(f"{root}/scenes/reference/bedroom_rect.json").to_dict()
     first = raw["objects"][0]

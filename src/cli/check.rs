@@ -9,7 +9,7 @@ use clap::Args;
 use rayon::prelude::*;
 use serde::Serialize;
 use shade_sim::scene::Scene;
-use shade_sim::sim::{CheckConfig, CheckReport, ViolationKind, check_scene};
+use shade_sim::sim::{CheckConfig, CheckReport, Meeting, ViolationKind, check_scene, people_meeting};
 use std::path::PathBuf;
 
 #[derive(Debug, Args)]
@@ -30,6 +30,9 @@ struct FileReport {
     file: String,
     #[serde(flatten)]
     report: CheckReport,
+    /// The scene's people inside each other (not a violation: no layout causes or mends it).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    people_meeting: Vec<Meeting>,
 }
 
 pub fn run(args: &CheckArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
@@ -50,13 +53,19 @@ pub fn run(args: &CheckArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
         .zip(&scenes)
         .map(|(f, s)| {
             let report = super::guarded(f, || Ok(check_scene(s, &cfg)));
+            let people_meeting = people_meeting(s, cfg.tolerance);
             bar.inc(1);
-            Ok(FileReport { file: f.display().to_string(), report: report? })
+            Ok(FileReport { file: f.display().to_string(), report: report?, people_meeting })
         })
         .collect();
     let reports = super::all_or_first_error(reports)?;
     bar.finish_and_clear();
     let dirty = reports.iter().filter(|r| !r.report.is_clean()).count();
+    for r in &reports {
+        for m in &r.people_meeting {
+            tracing::warn!("{}: {m}", r.file);
+        }
+    }
     if global.json {
         print_json(&reports)?;
     } else if global.quiet == 0 {

@@ -8,6 +8,7 @@ use clap::{Args, ValueEnum};
 use glam::DVec2;
 use shade_sim::motion::{ImportOptions, Placement, Units, UpAxis, import_motion};
 use shade_sim::scene::{ActionSpan, FloorPlan};
+use shade_sim::sim::{CheckConfig, people_meeting};
 use std::path::{Path, PathBuf};
 
 #[derive(Debug, Args)]
@@ -141,6 +142,10 @@ pub fn run(args: &ImportMotionArgs, global: &GlobalArgs) -> anyhow::Result<ExitS
             r.file.display()
         );
     }
+    let meetings = people_meeting(&scene, CheckConfig::default().tolerance);
+    for m in &meetings {
+        tracing::warn!("{}: {m}; put their clips apart in space or time (--place)", args.out.display());
+    }
     if global.json {
         let rows: Vec<serde_json::Value> = reports
             .iter()
@@ -153,7 +158,7 @@ pub fn run(args: &ImportMotionArgs, global: &GlobalArgs) -> anyhow::Result<ExitS
                 })
             })
             .collect();
-        print_json(&serde_json::json!({ "out": args.out, "humans": rows }))?;
+        print_json(&serde_json::json!({ "out": args.out, "humans": rows, "people_meeting": meetings }))?;
     } else if global.quiet == 0 {
         let mut text = String::new();
         for (r, h) in reports.iter().zip(&scene.humans) {

@@ -3,7 +3,7 @@
 //! SMPL joint array (centimetres, y-up) comes back as it was; placement, labels, bad files, and
 //! the MJCF replay of an imported clip.
 
-use super::{root, shade_sim};
+use super::{root, shade_sim, stderr, stdout};
 use glam::{DVec2, DVec3};
 use npyz::WriterBuilder;
 use shade_sim::geom::Polyline;
@@ -303,6 +303,56 @@ fn a_clip_read_with_the_wrong_up_axis_is_warned_about() {
     assert!(run("y").is_empty());
     let warned = run("z");
     assert!(warned.contains("freebvh_walk.bvh: the trunk is never upright") && warned.contains("--up"), "{warned}");
+}
+
+#[test]
+fn people_inside_each_other_are_warned_about_where_inputs_are_made_checked_and_furnished() {
+    let dir = tempfile::tempdir().unwrap();
+    // One pose of the walk clip (a BVH of one frame), imported twice `gap` m apart, side by side.
+    let text = std::fs::read_to_string(clip("freebvh_walk.bvh")).unwrap();
+    let (head, motion) = text.split_once("MOTION").unwrap();
+    let first = motion.lines().nth(3).unwrap();
+    let pose = dir.path().join("pose.bvh");
+    std::fs::write(&pose, format!("{head}MOTION\nFrames: 1\nFrame Time: 0.033333\n{first}\n")).unwrap();
+    let import = |gap: f64, json: bool| {
+        let out = dir.path().join(format!("pair_{gap}.json"));
+        let second = format!("1,{},-90", 1.5 + gap);
+        let mut args = vec!["import-motion", pose.to_str().unwrap(), pose.to_str().unwrap()];
+        args.extend(["--room", "living", "--floor", "6x5", "--place", "1,1.5,-90", "--place", &second]);
+        args.extend(["--out", out.to_str().unwrap()]);
+        if json {
+            args.insert(0, "--json");
+        }
+        let o = shade_sim(&args);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        (out, o)
+    };
+    let (apart, o) = import(1.0, false);
+    assert!(stderr(&o).is_empty(), "{}", stderr(&o));
+    let (close, o) = import(0.15, false);
+    let warned = stderr(&o);
+    assert!(warned.contains("h0 and h1 are inside each other: h0's") && warned.contains("--place"), "{warned}");
+    let (_, o) = import(0.15, true);
+    let report: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let meeting = &report["people_meeting"][0];
+    assert_eq!(meeting["humans"], serde_json::json!(["h0", "h1"]));
+    // Two trunks 0.15 m apart: their capsules overlap by about their two radii less the gap.
+    assert!(meeting["depth"].as_f64().unwrap() > 0.1, "{meeting}");
+    // `check` says so without calling it a violation: the input alone has none.
+    let o = shade_sim(&["check", "--no-stability", close.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stderr(&o).contains("are inside each other"), "{}", stderr(&o));
+    let o = shade_sim(&["check", "--no-stability", apart.to_str().unwrap()]);
+    assert!(stderr(&o).is_empty(), "{}", stderr(&o));
+    // `generate` says so before it samples; a hand-built input with a walker past three sitters
+    // does not draw the warning.
+    let gen_dir = dir.path().join("gen");
+    let o = shade_sim(&["generate", "--input", close.to_str().unwrap(), "--out", gen_dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stderr(&o).contains("pair_0.15.json: h0 and h1 are inside each other"), "{}", stderr(&o));
+    let sofa = root().join("tests/inputs/three_on_a_sofa.json");
+    let o = shade_sim(&["check", "--no-stability", sofa.to_str().unwrap()]);
+    assert!(!stderr(&o).contains("inside each other"), "{}", stderr(&o));
 }
 
 #[test]
