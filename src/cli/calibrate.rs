@@ -22,6 +22,10 @@ pub struct CalibrateArgs {
     /// stats.json counts the scenes that pass, calibration.json lists those that still fail.
     #[arg(long)]
     pub require_clean: bool,
+    /// Let the augmentations put people inside each other, as calibration did before 2026-11-26
+    /// (the data of the shipped models trained before then; models/MODEL_CARD.md says which).
+    #[arg(long)]
+    pub people_may_overlap: bool,
 }
 
 pub fn run(args: &CalibrateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
@@ -35,13 +39,14 @@ pub fn run(args: &CalibrateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStat
         args.data.display(),
         args.out.display(),
         if args.require_clean { " --require-clean" } else { "" }
-    );
+    ) + if args.people_may_overlap { " --people-may-overlap" } else { "" };
     let judge = args.require_clean.then_some(&SimPhysics as &dyn Physics);
     let bar = super::progress::bar(global, 0, "calibrate");
-    let report = calibrate_dataset(&args.data, &args.out, &command, judge, &|done, total| {
-        bar.set_length(total as u64);
-        bar.set_position(done as u64);
-    })?;
+    let report =
+        calibrate_dataset(&args.data, &args.out, &command, judge, !args.people_may_overlap, &|done, total| {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+        })?;
     bar.finish_and_clear();
     if global.json {
         print_json(&report)?;

@@ -8,8 +8,9 @@ use super::{ExitStatus, GlobalArgs};
 use clap::Args;
 use rayon::prelude::*;
 use serde::Serialize;
+use shade_sim::human::{Meeting, people_meeting};
 use shade_sim::scene::Scene;
-use shade_sim::sim::{CheckConfig, CheckReport, Meeting, ViolationKind, check_scene, people_meeting};
+use shade_sim::sim::{CheckConfig, CheckReport, ViolationKind, check_scene};
 use std::path::PathBuf;
 
 #[derive(Debug, Args)]

@@ -9,10 +9,10 @@ use anyhow::Context;
 use clap::Args;
 use rayon::prelude::*;
 use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig, shipped_model};
+use shade_sim::human::{Meeting, people_meeting};
 use shade_sim::pipeline::{LayoutOptions, make_grouped_layouts, people_in_walls_message, room_groups};
 use shade_sim::repair::{RepairConfig, RepairTotals};
 use shade_sim::scene::{RoomType, Scene};
-use shade_sim::sim::{Meeting, people_meeting};
 use std::path::{Path, PathBuf};
 
 #[derive(Debug, Args)]

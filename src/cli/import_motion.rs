@@ -6,9 +6,10 @@ use super::{ExitStatus, GlobalArgs, RoomArg};
 use anyhow::{Context, bail};
 use clap::{Args, ValueEnum};
 use glam::DVec2;
+use shade_sim::human::people_meeting;
 use shade_sim::motion::{ImportOptions, Placement, Units, UpAxis, import_motion};
 use shade_sim::scene::{ActionSpan, FloorPlan};
-use shade_sim::sim::{CheckConfig, people_meeting};
+use shade_sim::sim::CheckConfig;
 use std::path::{Path, PathBuf};
 
 #[derive(Debug, Args)]

@@ -4,17 +4,19 @@
 //! With a judge (`calibrate --require-clean`), each human's placement is checked with them alone in
 //! the room (`calibrate_scene`), and a scene the check still fails is calibrated again — with
 //! fresh augmentation draws ([`CALIBRATION_DRAWS`] in all), then without the augmentations and
-//! without the contact people the check fails wherever calibration puts them (left out, marked in
-//! `calibration.json`) — and the first that passes is kept (the first draw when none does); each
+//! without the contact people the check fails wherever calibration puts them or who are inside
+//! someone placed before them (left out, marked in `calibration.json`) — and the first that passes
+//! the check with no two people inside each other is kept (the first draw when none does); each
 //! split's stats count the scenes that pass and those calibrated again, and `calibration.json`
 //! lists the ones that still fail.
 
-use super::calibrate::{SceneCalibration, calibrate_scene, passes_alone};
+use super::calibrate::{MAX_POINT_DEPTH, SceneCalibration, calibrate_scene, passes_alone};
 use super::stats::{DatasetStats, SplitStats};
 use super::synth::write_stats;
 use super::{DataError, Rng};
+use crate::human::{meets_anyone, people_meeting};
 use crate::physics::Physics;
-use crate::scene::{Action, RoomType, Scene, write_atomic};
+use crate::scene::{Action, Human, RoomType, Scene, write_atomic};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -84,7 +86,9 @@ pub fn read_stats(dir: &Path) -> Result<DatasetStats, DataError> {
 }
 
 /// Calibrates every scene of the dataset in `src` into `out` (same layout), writes
-/// `out/stats.json` and `out/calibration.json`, and returns the report.
+/// `out/stats.json` and `out/calibration.json`, and returns the report. `people_apart` keeps the
+/// people out of each other (`calibrate_scene`; with a judge, a scene is also clean only with no
+/// two people inside each other): false reproduces the calibration before 2026-11-26.
 ///
 /// # Errors
 /// [`DataError`] for a missing or bad dataset, a bad scene, or a write failure. Files already
@@ -94,6 +98,7 @@ pub fn calibrate_dataset(
     out: &Path,
     command: &str,
     judge: Option<&dyn Physics>,
+    people_apart: bool,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<CalibrationReport, DataError> {
     let stats = read_stats(src)?;
@@ -119,7 +124,7 @@ pub fn calibrate_dataset(
                     message: format!("a {} scene in a {} dataset", scene.room_type, stats.room_type),
                 });
             }
-            let (cal, check) = calibrate_checked(&scene, stats.seed, i as u64, judge);
+            let (cal, check) = calibrate_checked(&scene, stats.seed, i as u64, judge, people_apart);
             let name = file.file_name().expect("listed files have names").to_string_lossy().into_owned();
             let target = out.join(split).join(&name);
             write_atomic(&target, cal.scene.to_json().as_bytes()).map_err(|e| DataError::io(&target, e))?;
@@ -211,38 +216,55 @@ fn calibrate_checked(
     seed: u64,
     index: u64,
     judge: Option<&dyn Physics>,
+    people_apart: bool,
 ) -> (SceneCalibration, Option<Verdict>) {
     let draw = |k: u64, augment: bool| {
         let mut rng = Rng::for_item(seed ^ 0xCA11_B8A7 ^ k.wrapping_mul(0x9E37_79B9_7F4A_7C15), index);
-        calibrate_scene(scene, &mut rng, augment, judge)
+        calibrate_scene(scene, &mut rng, augment, judge, people_apart)
     };
     let first = draw(0, true);
     let Some(judge) = judge else { return (first, None) };
     // Each human's placement was checked alone; the scene is checked whole (people near each
-    // other, furniture the replay pushes).
-    if judge.passes_check(&first.scene) {
+    // other, furniture the replay pushes), and no two people may be inside each other.
+    let clean = |s: &Scene| judge.passes_check(s) && (!people_apart || people_meeting(s, MAX_POINT_DEPTH).is_empty());
+    if clean(&first.scene) {
         return (first, Some(Verdict { passes: true, again: false }));
     }
     let plain = || {
         let mut cal = draw(CALIBRATION_DRAWS, false);
-        let unplaced: Vec<String> = cal
+        let mut unplaced: Vec<String> = cal
             .humans
             .iter()
             .filter_map(|r| cal.scene.humans.iter().find(|h| h.id == r.human))
             .filter(|h| !passes_alone(&cal.scene, h, judge))
             .map(|h| h.id.clone())
             .collect();
+        // And a contact person inside someone kept before them.
+        let mut kept: Vec<&Human> = Vec::new();
+        for h in &cal.scene.humans {
+            if unplaced.contains(&h.id) {
+                continue;
+            }
+            let contact = cal.humans.iter().any(|r| r.human == h.id);
+            if people_apart && contact && meets_anyone(h, kept.iter().copied(), MAX_POINT_DEPTH) {
+                unplaced.push(h.id.clone());
+            } else {
+                kept.push(h);
+            }
+        }
         cal.scene.humans.retain(|h| !unplaced.contains(&h.id));
         for r in cal.humans.iter_mut().filter(|r| unplaced.contains(&r.human)) {
             r.left_out = true;
             r.fixed = false;
-            r.problem = Some("left out: the check fails them wherever calibration puts them".into());
+            r.problem = Some(
+                "left out: the check fails them wherever calibration puts them, or they are inside someone".into(),
+            );
         }
         cal
     };
     let again = (1..CALIBRATION_DRAWS).map(|k| draw(k, true)).chain(std::iter::once_with(plain));
     for cal in again {
-        if judge.passes_check(&cal.scene) {
+        if clean(&cal.scene) {
             return (cal, Some(Verdict { passes: true, again: true }));
         }
     }
@@ -259,21 +281,21 @@ mod tests {
     fn a_calibration_the_check_fails_is_drawn_again_then_made_without_augmentation() {
         let scene = generate_room(RoomType::Living, 3, 5, true).scene;
         assert!(scene.humans.len() >= 2);
-        let (unchecked, none) = calibrate_checked(&scene, 3, 5, None);
+        let (unchecked, none) = calibrate_checked(&scene, 3, 5, None, true);
         assert_eq!(none, None);
-        let (passing, check) = calibrate_checked(&scene, 3, 5, Some(&FailFirst::rooms(0)));
+        let (passing, check) = calibrate_checked(&scene, 3, 5, Some(&FailFirst::rooms(0)), true);
         assert_eq!((passing, check), (unchecked.clone(), Some(Verdict { passes: true, again: false })));
         // Every augmented draw refused: the one without augmentation, which augments nobody.
-        let (plain, check) = calibrate_checked(&scene, 3, 5, Some(&FailFirst::rooms(CALIBRATION_DRAWS as usize)));
+        let (plain, check) = calibrate_checked(&scene, 3, 5, Some(&FailFirst::rooms(CALIBRATION_DRAWS as usize)), true);
         assert_eq!(check, Some(Verdict { passes: true, again: true }));
         assert!(plain.humans.iter().all(|h| h.action == h.action_before));
         assert_eq!(
             plain,
-            calibrate_scene(&scene, &mut Rng::new(0), false, Some(&FailFirst::rooms(0))),
+            calibrate_scene(&scene, &mut Rng::new(0), false, Some(&FailFirst::rooms(0)), true),
             "no draws without augmentation"
         );
         // Nothing passes: the first draw, said to fail.
-        let (kept, check) = calibrate_checked(&scene, 3, 5, Some(&FailFirst::rooms(100)));
+        let (kept, check) = calibrate_checked(&scene, 3, 5, Some(&FailFirst::rooms(100)), true);
         assert_eq!((kept, check), (unchecked, Some(Verdict { passes: false, again: true })));
     }
 }

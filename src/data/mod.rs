@@ -20,7 +20,8 @@ mod synth;
 mod threedfront;
 
 pub use calibrate::{
-    HumanCalibration, MAX_TRANSLATION, SAFE_PENETRATION, SceneCalibration, calibrate_scene, contact_object, iou_target,
+    HumanCalibration, MAX_POINT_DEPTH, MAX_TRANSLATION, SAFE_PENETRATION, SceneCalibration, calibrate_scene,
+    contact_object, iou_target,
 };
 pub use calibrate_dataset::{CALIBRATION_DRAWS, CalibrationReport, Unfixable, calibrate_dataset, read_stats};
 pub use error::DataError;

@@ -6,6 +6,7 @@
 
 mod conditions;
 mod gait;
+mod meetings;
 mod motion;
 mod pose;
 mod skeleton;
@@ -16,6 +17,7 @@ pub use conditions::{
     free_space_mask, palm_of,
 };
 pub use gait::Gait;
+pub use meetings::{Meeting, meets_anyone, people_meeting};
 pub use motion::Motion;
 pub use pose::{BODY_BONES, KNEE_OVERHANG, Pose, SEAT_BONES, lie, sit, stand, stand_local, touch, two_bone_ik};
 pub use skeleton::{Body, JOINT_NAMES, Joint, Side, round_mm};

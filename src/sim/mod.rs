@@ -5,7 +5,6 @@
 //! furniture templates (`crate::furniture`).
 
 mod check;
-mod meetings;
 #[cfg(feature = "mujoco")]
 mod mujoco;
 mod physics;
@@ -15,7 +14,6 @@ mod stability;
 mod violation;
 
 pub use check::{CheckConfig, CheckReport, capsule_depth, capsule_depth_beyond, check_scene, people_in_walls};
-pub use meetings::{Meeting, people_meeting};
 #[cfg(feature = "mujoco")]
 pub use mujoco::mujoco_replay;
 pub use physics::SimPhysics;

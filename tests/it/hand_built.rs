@@ -86,7 +86,7 @@ fn no_hand_built_input_has_people_inside_each_other() {
     // under the table: a mistake of ours that `check` and `generate` now warn about.
     for file in crate::json_files("tests/inputs") {
         let scene = shade_sim::scene::Scene::load(&file).unwrap();
-        let found = shade_sim::sim::people_meeting(&scene, shade_sim::sim::CheckConfig::default().tolerance);
+        let found = shade_sim::human::people_meeting(&scene, shade_sim::sim::CheckConfig::default().tolerance);
         assert!(found.is_empty(), "{}: {found:?}", file.display());
     }
 }

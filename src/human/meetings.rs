@@ -4,8 +4,9 @@
 //! diners whose legs meet under a too-narrow table, a walker through a sitter, two sitters put on
 //! one spot.
 //!
-//! No layout causes or mends this, so it is not one of [`check_scene`](super::check_scene)'s
-//! violations: the command line warns about it where inputs are used (`generate`, `check`).
+//! No layout causes or mends this, so it is not one of the check's violations: the command line
+//! warns about it where inputs are made and used (`import-motion`, `generate`, `check`), and
+//! calibration keeps the people it moves and augments out of each other (`data::calibrate`).
 //! People who move are traces of where people go, not one choreography (3D-FRONT HUMAN's
 //! walkers, and ours, cross each other's paths at the same moment 1 to 3 times per room), so two
 //! moving people never meet here; a held pose is there all the time, so whoever comes through it
@@ -68,6 +69,11 @@ fn extent(h: &Human, f: usize) -> (DVec3, DVec3) {
     let thickest = h.skeleton.bones.iter().map(|b| b.radius).fold(0.0, f64::max);
     let (lo, hi) = h.frame(f).fold((DVec3::MAX, DVec3::MIN), |(lo, hi), p| (lo.min(p), hi.max(p)));
     (lo - thickest, hi + thickest)
+}
+
+/// Whether `h` is inside any of `others` (by more than `tolerance`, one of the two holding still).
+pub fn meets_anyone<'a>(h: &Human, others: impl IntoIterator<Item = &'a Human>, tolerance: f64) -> bool {
+    others.into_iter().any(|o| meeting(h, o, tolerance).is_some())
 }
 
 fn meeting(a: &Human, b: &Human, tolerance: f64) -> Option<Meeting> {
