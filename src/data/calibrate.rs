@@ -13,11 +13,12 @@
 //! - Orientation augmentation: every contact human turns by a random yaw (σ = 10°) about its pelvis,
 //!   then translation modification runs again.
 //!
-//! Neither the translation nor an augmentation may put a person inside another (`human::people_meeting`, by more than
-//! [`MAX_POINT_DEPTH`]): a sitter turned into a sleeper along a sofa where two more people sit
-//! stays a sitter, and a turn into the next sitter is not made. (Without this, 11–14 % of the
-//! calibrated living and dining rooms held two people inside each other, most of them a sleeper
-//! across the others on one sofa.)
+//! With `people_apart`, neither the translation nor an augmentation may put a person inside
+//! another (`human::people_meeting`, by more than [`MAX_POINT_DEPTH`]): a sitter turned into a
+//! sleeper along a sofa where two more people sit stays a sitter, a turn into the next sitter is not
+//! made, and a person the translation would put inside someone stays where they were, unfixed.
+//! (Without it, 11–14 % of the calibrated living and dining rooms held two people inside each
+//! other, most of them a sleeper along a sofa where others sit.)
 
 use super::Rng;
 use super::layout::Placed;
@@ -284,7 +285,7 @@ fn alternative(object: &Object, action: Action) -> Option<Action> {
 /// Calibrates one scene; `rng` drives the augmentations, which run only with `augment`
 /// (translation modification always does). With `check`, each human's placement is the nearest
 /// of the first few within the bounds that the check passes with that human alone in the room.
-/// With `people_apart`, no augmentation puts a person inside another (module header).
+/// With `people_apart`, no one is put inside another (module header).
 pub fn calibrate_scene(
     scene: &Scene,
     rng: &mut Rng,
