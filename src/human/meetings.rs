@@ -1,8 +1,7 @@
 //! People inside each other: the pairs of an input's people in which one holds a pose (every joint
 //! within the tolerance of where it starts: a sitter, a sleeper, a toucher) that the other's body
-//! enters at some frame — two
-//! diners whose legs meet under a too-narrow table, a walker through a sitter, two sitters put on
-//! one spot.
+//! enters at some frame — two diners whose legs meet under a too-narrow table, a walker through a
+//! sitter, two sitters put on one spot.
 //!
 //! No layout causes or mends this, so it is not one of the check's violations: the command line
 //! warns about it where inputs are made and used (`import-motion`, `generate`, `check`), and
@@ -26,7 +25,8 @@ pub struct Meeting {
     pub humans: [String; 2],
     /// The bone of each (`"left_knee-left_ankle"`) at the deepest frame.
     pub bones: [String; 2],
-    /// The deepest frame (of the longer clip where both hold a pose).
+    /// The deepest frame, counted in the clip of the one who moves (the longer clip where both
+    /// hold a pose).
     pub frame: usize,
     /// How far (m) the two bones' capsules overlap there.
     pub depth: f64,
@@ -76,6 +76,7 @@ pub fn meets_anyone<'a>(h: &Human, others: impl IntoIterator<Item = &'a Human>, 
     others.into_iter().any(|o| meeting(h, o, tolerance).is_some())
 }
 
+/// `a` and `b` inside each other, where one of them holds a pose (module header).
 fn meeting(a: &Human, b: &Human, tolerance: f64) -> Option<Meeting> {
     let held = |h: &Human| h.frames.iter().all(|f| f.iter().zip(&h.frames[0]).all(|(p, q)| dist(p, q) <= tolerance));
     if !(held(a) || held(b)) {
