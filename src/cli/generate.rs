@@ -160,7 +160,7 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
             })
         })
         .collect::<anyhow::Result<_>>()?;
-    // People inside each other: no layout mends it (`sim::people_meeting`); said before sampling.
+    // People inside each other: no layout mends it (`human::people_meeting`); said before sampling.
     let meetings: Vec<Vec<Meeting>> = inputs.par_iter().map(|s| people_meeting(s, opts.check.tolerance)).collect();
     for (file, found) in files.iter().zip(&meetings) {
         for m in found {

@@ -145,7 +145,7 @@ pub fn run(args: &ImportMotionArgs, global: &GlobalArgs) -> anyhow::Result<ExitS
     }
     let meetings = people_meeting(&scene, CheckConfig::default().tolerance);
     for m in &meetings {
-        tracing::warn!("{}: {m}; put their clips apart in space or time (--place)", args.out.display());
+        tracing::warn!("{}: {m}; put their clips apart (--place)", args.out.display());
     }
     if global.json {
         let rows: Vec<serde_json::Value> = reports
