@@ -53,10 +53,10 @@ pub fn run(args: &CheckArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
         .par_iter()
         .zip(&scenes)
         .map(|(f, s)| {
-            let report = super::guarded(f, || Ok(check_scene(s, &cfg)));
-            let people_meeting = people_meeting(s, cfg.tolerance);
+            let checked = super::guarded(f, || Ok((check_scene(s, &cfg), people_meeting(s, cfg.tolerance))));
             bar.inc(1);
-            Ok(FileReport { file: f.display().to_string(), report: report?, people_meeting })
+            let (report, people_meeting) = checked?;
+            Ok(FileReport { file: f.display().to_string(), report, people_meeting })
         })
         .collect();
     let reports = super::all_or_first_error(reports)?;

@@ -301,10 +301,11 @@ pub fn calibrate_scene(
     let mut out = scene.clone();
     let mut records = Vec::new();
     for k in 0..out.humans.len() {
-        let others: Vec<Human> =
-            out.humans.iter().enumerate().filter(|&(j, _)| j != k).map(|(_, o)| o.clone()).collect();
-        let apart = |h: &Human| !people_apart || !meets_anyone(h, &others, MAX_POINT_DEPTH);
-        let h = &mut out.humans[k];
+        // This human, and everyone else as they stand now (calibrated before it, or not yet).
+        let (earlier, rest) = out.humans.split_at_mut(k);
+        let (h, later) = rest.split_first_mut().expect("k is a human's index");
+        let (earlier, later) = (&*earlier, &*later);
+        let apart = |h: &Human| !people_apart || !meets_anyone(h, earlier.iter().chain(later), MAX_POINT_DEPTH);
         let Some((action_before, b)) = judge.contact(h) else { continue };
         let before = (crate::measure::human_penetration(h, &judge.field), contact_iou(&b, &scene.objects));
         let original = h.clone();
