@@ -41,6 +41,7 @@ fn conditions(cfg: &ModelConfig, b: usize, rng: &mut Rng) -> CondTensors {
         contact_mask: Tensor::from_vec(mask, (b, k), &Device::Cpu).unwrap(),
         floor: random(&[b, cfg.floor_points, 4], rng),
         free: random(&[b, cfg.free_points, 3], rng),
+        room: Tensor::from_vec([1.0f32, 0.0, 0.0].repeat(b), (b, 3), &Device::Cpu).unwrap(),
     }
 }
 
@@ -110,6 +111,7 @@ fn train_batch(s: &Setup, rng: &mut Rng) -> NoisyBatch {
             contact_mask: part(&mask),
             floor: part(&floor),
             free: part(&free),
+            room: vec![1.0, 0.0, 0.0],
         });
     }
     let per_item = s.cfg.slots() * s.cfg.token_dim();

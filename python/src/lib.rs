@@ -260,9 +260,13 @@ fn generate<'py>(
             Some(g) => g.clone(),
             None => shipped_generator(*room)?,
         };
-        let model_room = generator.checkpoint.meta.model.room_type;
-        if model_room != *room {
-            return Err(PyValueError::new_err(format!("input is a {room} but the model generates {model_room}")));
+        let model = &generator.checkpoint.meta.model;
+        if !model.serves(*room) {
+            let rooms: Vec<String> = model.rooms().iter().map(|r| r.to_string()).collect();
+            return Err(PyValueError::new_err(format!(
+                "input is a {room} but the model generates {}",
+                rooms.join(" or ")
+            )));
         }
         generators.push(generator);
     }

@@ -112,14 +112,19 @@ impl GuidanceArgs {
     }
 }
 
-/// The model in `dir`, or the shipped one for `room`; fails when its room type differs.
+/// The model in `dir`, or the shipped one for `room`; fails when it does not generate `room`.
 pub fn load_model(dir: Option<&Path>, room: RoomType, input: &Path) -> anyhow::Result<Generator> {
     let checkpoint = match dir {
         Some(d) => Checkpoint::load(d)?,
         None => shipped_model(room)?,
     };
-    let model_room = checkpoint.meta.model.room_type;
-    anyhow::ensure!(model_room == room, "{}: is a {room} but the model generates {model_room}", input.display());
+    let model = &checkpoint.meta.model;
+    anyhow::ensure!(
+        model.serves(room),
+        "{}: is a {room} but the model generates {}",
+        input.display(),
+        model.rooms().iter().map(|r| r.to_string()).collect::<Vec<_>>().join(" or ")
+    );
     Ok(Generator::new(checkpoint))
 }
 
@@ -137,18 +142,9 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
         attempts: args.attempts,
         ..LayoutOptions::default()
     };
-    // One model per room type, in the order the types first appear (with --model: one type only).
+    // One model per room type, in the order the types first appear (with --model: that model for
+    // each, which must generate them all).
     let groups = room_groups(&inputs);
-    if args.model.is_some() && groups.len() > 1 {
-        let (f, s) = files.iter().zip(&inputs).find(|(_, s)| s.room_type != groups[0].0).expect("a second room type");
-        anyhow::bail!(
-            "{}: is a {} but {} is a {}; a --model generates one room type",
-            f.display(),
-            s.room_type,
-            files[0].display(),
-            groups[0].0
-        );
-    }
     let generators: Vec<Generator> = groups
         .iter()
         .map(|(room, members)| -> anyhow::Result<_> {

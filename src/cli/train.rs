@@ -26,6 +26,15 @@ pub struct TrainArgs {
     /// (--data's val split stays the validation set); repeatable.
     #[arg(long)]
     pub extra_data: Vec<PathBuf>,
+    /// A calibrated dataset of another room type the model also serves (needs --room-token; living
+    /// and dining rooms share their categories): its train split joins the training set, its val
+    /// and test splits stay out; repeatable.
+    #[arg(long, requires = "room_token")]
+    pub joint_data: Vec<PathBuf>,
+    /// One model for every room type with --data's categories (living and dining rooms): a learned
+    /// vector per room type joins the condition.
+    #[arg(long)]
+    pub room_token: bool,
     /// Model folder to write (config.json, model.safetensors, log.jsonl, loss.png, train state).
     #[arg(long)]
     pub out: PathBuf,
@@ -148,6 +157,7 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     if args.min_snr_floor.is_some() {
         model.min_snr_floor = args.min_snr_floor;
     }
+    model.room_token |= args.room_token;
     let state = args.out.join(shade_sim::generator::checkpoint::STATE_META_FILE);
     anyhow::ensure!(
         args.resume || !state.exists(),
@@ -160,6 +170,7 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     );
     let mut opts = TrainOptions::new(args.data.clone(), args.out.clone(), model);
     opts.extra_data = args.extra_data.clone();
+    opts.joint_data = args.joint_data.clone();
     opts.steps = args.steps;
     opts.batch = args.batch;
     opts.lr = args.lr;

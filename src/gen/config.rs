@@ -88,6 +88,12 @@ pub struct ModelConfig {
     /// does. Needs `min_snr`; none (0) in older configs.
     #[serde(default)]
     pub min_snr_floor: Option<f64>,
+    /// A room token: a learned vector per room type ([`RoomType::ALL`]) added to the condition,
+    /// so that one model serves every room type sharing its categories and slots (living and
+    /// dining rooms), trained on all their rooms ([`ModelConfig::serves`]). Off in older configs:
+    /// the model serves `room_type` alone.
+    #[serde(default)]
+    pub room_token: bool,
 }
 
 /// Which noise levels the T steps visit.
@@ -195,6 +201,7 @@ impl ModelConfig {
             self_condition: false,
             min_snr: None,
             min_snr_floor: None,
+            room_token: false,
         }
     }
 
@@ -237,6 +244,7 @@ impl ModelConfig {
             self_condition: false,
             min_snr: None,
             min_snr_floor: None,
+            room_token: false,
         }
     }
 
@@ -248,6 +256,22 @@ impl ModelConfig {
             "tiny" => Some(Self::tiny(room_type)),
             _ => None,
         }
+    }
+
+    /// Whether the model generates rooms of type `room`: its own, or with a room token any type
+    /// with the same categories, slots and window (living and dining rooms).
+    pub fn serves(&self, room: RoomType) -> bool {
+        let same = |r: RoomType| {
+            r.categories() == self.room_type.categories()
+                && r.max_objects() == self.room_type.max_objects()
+                && r.window_side() == self.room_type.window_side()
+        };
+        room == self.room_type || (self.room_token && same(room))
+    }
+
+    /// The room types the model generates ([`ModelConfig::serves`]), in [`RoomType::ALL`]'s order.
+    pub fn rooms(&self) -> Vec<RoomType> {
+        RoomType::ALL.into_iter().filter(|&r| self.serves(r)).collect()
     }
 
     /// Object slots (tokens) per scene.
@@ -367,5 +391,15 @@ mod tests {
         assert!(above.problem().unwrap().contains("min_snr_floor"));
         let good = ModelConfig { min_snr: Some(5.0), min_snr_floor: Some(1.0), ..tiny };
         assert_eq!(good.problem(), None);
+    }
+
+    #[test]
+    fn a_room_token_serves_the_room_types_that_share_the_categories() {
+        let living = ModelConfig::tiny(RoomType::Living);
+        assert_eq!(living.rooms(), [RoomType::Living]);
+        let joint = ModelConfig { room_token: true, ..living };
+        assert_eq!(joint.rooms(), [RoomType::Living, RoomType::Dining]);
+        let bedroom = ModelConfig { room_token: true, ..ModelConfig::tiny(RoomType::Bedroom) };
+        assert_eq!(bedroom.rooms(), [RoomType::Bedroom]);
     }
 }

@@ -7,7 +7,7 @@ use super::{Bounds, Dihedral, Features, GenError, ModelConfig, Prediction, Sched
 use crate::data::{DataError, Rng};
 use crate::geom::OBox;
 use crate::human::Conditions;
-use crate::scene::Scene;
+use crate::scene::{RoomType, Scene};
 use candle_core::{Device, Tensor};
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
@@ -29,7 +29,7 @@ impl Example {
         let cond = Conditions::of(scene);
         let boxes: Vec<OBox> = cond.contact_boxes.iter().map(|b| b.obox).collect();
         let (tokens, weights) = tokens::encode(scene, cond.window.center, &boxes, bounds, cfg);
-        Example { tokens, weights, features: Features::of(&cond, bounds, cfg) }
+        Example { tokens, weights, features: Features::of(&cond, scene.room_type, bounds, cfg) }
     }
 
     /// This example under the symmetry `g`.
@@ -97,15 +97,20 @@ pub fn load_split(dir: &Path, split: &str, bounds: &Bounds, cfg: &ModelConfig) -
         .par_iter()
         .map(|f| {
             let scene = Scene::load(f).map_err(|e| GenError::Data(DataError::Scene(e)))?;
-            if scene.room_type != cfg.room_type {
+            if !cfg.serves(scene.room_type) {
                 return Err(GenError::Input {
                     path: f.clone(),
-                    message: format!("room type {} but the model is for {}", scene.room_type, cfg.room_type),
+                    message: format!("room type {} but the model is for {}", scene.room_type, rooms(cfg)),
                 });
             }
             Ok(Example::of(&scene, bounds, cfg))
         })
         .collect()
+}
+
+/// The room types `cfg` serves, for messages ("living or dining").
+pub fn rooms(cfg: &ModelConfig) -> String {
+    cfg.rooms().iter().map(|r| r.to_string()).collect::<Vec<_>>().join(" or ")
 }
 
 /// A batch on the host, ready to become tensors.
@@ -121,6 +126,7 @@ pub struct HostBatch {
     pub(super) contact_mask: Vec<f32>,
     pub(super) floor: Vec<f32>,
     pub(super) free: Vec<f32>,
+    pub(super) rooms: Vec<f32>,
 }
 
 impl HostBatch {
@@ -140,6 +146,7 @@ impl HostBatch {
         self.contact_mask.extend_from_slice(&f.contact_mask);
         self.floor.extend_from_slice(&f.floor);
         self.free.extend_from_slice(&f.free);
+        self.rooms.extend_from_slice(&f.room);
     }
 
     /// The conditioning as tensors.
@@ -151,6 +158,7 @@ impl HostBatch {
             contact_mask: Tensor::from_slice(&self.contact_mask, (b, cfg.max_contacts), dev)?,
             floor: Tensor::from_slice(&self.floor, (b, cfg.floor_points, FLOOR_FEATURES), dev)?,
             free: Tensor::from_slice(&self.free, (b, cfg.free_points, FREE_FEATURES), dev)?,
+            room: Tensor::from_slice(&self.rooms, (b, RoomType::ALL.len()), dev)?,
         })
     }
 

@@ -7,7 +7,7 @@
 use super::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES};
 use super::{Bounds, ModelConfig};
 use crate::human::Conditions;
-use crate::scene::Action;
+use crate::scene::{Action, RoomType};
 
 /// The conditioning features of one scene.
 #[derive(Debug, Clone, PartialEq)]
@@ -20,11 +20,14 @@ pub struct Features {
     pub floor: Vec<f32>,
     /// `free_points × 3`: position, 1 (or a single zero point repeated when nobody walks).
     pub free: Vec<f32>,
+    /// The room type, one-hot over [`RoomType::ALL`] (read by models with a room token).
+    pub room: Vec<f32>,
 }
 
 impl Features {
-    /// Features of `cond` for a model of `cfg` with `bounds`.
-    pub fn of(cond: &Conditions, bounds: &Bounds, cfg: &ModelConfig) -> Features {
+    /// Features of `cond`, the conditions of a room of type `room`, for a model of `cfg` with
+    /// `bounds`.
+    pub fn of(cond: &Conditions, room: RoomType, bounds: &Bounds, cfg: &ModelConfig) -> Features {
         let center = cond.window.center;
         let xy = |x: f64, y: f64| {
             let s = bounds.scale_center([x, y, 0.0]);
@@ -69,7 +72,8 @@ impl Features {
                 free.extend([x, y, 1.0]);
             }
         }
-        Features { contacts, contact_mask, floor, free }
+        let room = RoomType::ALL.map(|r| if r == room { 1.0 } else { 0.0 }).to_vec();
+        Features { contacts, contact_mask, floor, free, room }
     }
 
     /// Applies `g` to every position and direction.

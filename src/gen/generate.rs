@@ -68,11 +68,15 @@ impl Generator {
         guidance: &mut GuidanceFactory,
         progress: &mut dyn FnMut(usize),
     ) -> Result<Vec<Vec<Scene>>, GenError> {
-        let room = self.checkpoint.meta.model.room_type;
-        if let Some(bad) = inputs.iter().find(|s| s.room_type != room) {
+        let model = &self.checkpoint.meta.model;
+        if let Some(bad) = inputs.iter().find(|s| !model.serves(s.room_type)) {
             return Err(GenError::Input {
                 path: Default::default(),
-                message: format!("input is a {} but the model generates {room}", bad.room_type),
+                message: format!(
+                    "input is a {} but the model generates {}",
+                    bad.room_type,
+                    super::dataset::rooms(model)
+                ),
             });
         }
         let jobs: Vec<(usize, usize)> = (0..inputs.len()).flat_map(|i| (0..samples).map(move |k| (i, k))).collect();
@@ -80,7 +84,7 @@ impl Generator {
             .iter()
             .map(|s| {
                 let cond = Conditions::of(s);
-                let f = Features::of(&cond, &self.checkpoint.meta.bounds, &self.checkpoint.meta.model);
+                let f = Features::of(&cond, s.room_type, &self.checkpoint.meta.bounds, model);
                 (cond, f)
             })
             .collect();

@@ -60,14 +60,19 @@ impl FastDenoiser {
         let cfg = self.config();
         let items = cond.contacts.dims3()?.0;
         let host = |t: &candle_core::Tensor| -> Result<Vec<f32>, GenError> { Ok(t.flatten_all()?.to_vec1()?) };
-        let (contacts, mask, floor, free) =
-            (host(&cond.contacts)?, host(&cond.contact_mask)?, host(&cond.floor)?, host(&cond.free)?);
+        let (contacts, mask, floor, free, rooms) = (
+            host(&cond.contacts)?,
+            host(&cond.contact_mask)?,
+            host(&cond.floor)?,
+            host(&cond.free)?,
+            host(&cond.room)?,
+        );
         let starts: Vec<usize> = (0..items).step_by(SAMPLING_CHUNK).collect();
         let chunks = starts
             .par_iter()
             .map(|&start| {
                 let end = (start + SAMPLING_CHUNK).min(items);
-                let inputs = ConditionInputs::span(cfg, [&contacts, &mask, &floor, &free], start, end);
+                let inputs = ConditionInputs::span(cfg, [&contacts, &mask, &floor, &free, &rooms], start, end);
                 self.net.encode(&self.params, &inputs)
             })
             .collect();
@@ -122,7 +127,7 @@ mod tests {
         let mut contacts = Vec::new();
         for seed in 0..6 {
             let scene = generate_room(RoomType::Living, 3, seed, false).scene;
-            let f = Features::of(&Conditions::of(&scene), &checkpoint.meta.bounds, cfg);
+            let f = Features::of(&Conditions::of(&scene), scene.room_type, &checkpoint.meta.bounds, cfg);
             contacts.push(f.contact_mask.iter().sum::<f32>() as usize);
             batch.push_features(&f);
         }
@@ -159,7 +164,7 @@ mod tests {
         let mut batch = HostBatch::default();
         for seed in 0..3 {
             let scene = generate_room(RoomType::Dining, 3, seed, false).scene;
-            batch.push_features(&Features::of(&Conditions::of(&scene), &bounds, &cfg));
+            batch.push_features(&Features::of(&Conditions::of(&scene), scene.room_type, &bounds, &cfg));
         }
         let cond = batch.cond(&cfg).unwrap();
         let mut prepared = fast.prepare(&cond).unwrap();
@@ -189,7 +194,7 @@ mod tests {
         let features: Vec<Features> = (0..3)
             .map(|seed| {
                 let scene = generate_room(RoomType::Bedroom, 5, seed, false).scene;
-                Features::of(&Conditions::of(&scene), &checkpoint.meta.bounds, cfg)
+                Features::of(&Conditions::of(&scene), scene.room_type, &checkpoint.meta.bounds, cfg)
             })
             .collect();
         let per_item = cfg.slots() * cfg.token_dim();

@@ -14,6 +14,7 @@ use super::params::{Init, Linear, Params, layer_norm};
 use super::relations::{self, RELATION_FEATURES};
 use super::walls::{self, WALL_FEATURES};
 use super::{GenError, ModelConfig};
+use crate::scene::RoomType;
 use candle_core::{D, Device, Tensor};
 use std::collections::BTreeMap;
 
@@ -28,6 +29,8 @@ pub struct CondTensors {
     pub floor: Tensor,
     /// Free-space points (B, Q, 3).
     pub free: Tensor,
+    /// The room type, one-hot over [`RoomType::ALL`] (B, 3).
+    pub room: Tensor,
 }
 
 /// A PointNet: a shared per-point MLP followed by a max over the points.
@@ -136,6 +139,9 @@ pub struct Denoiser {
     pub(super) blocks: Vec<Block>,
     pub(super) final_modulation: Linear,
     pub(super) output: Linear,
+    /// With a room token: one learned vector per room type ([`RoomType::ALL`]), added to the
+    /// condition; a bias-free linear layer's weight (d × rooms) applied to the one-hot room.
+    pub(super) room: Option<Tensor>,
     /// Every parameter by name (the checkpoint's names).
     pub(super) named: BTreeMap<String, Tensor>,
 }
@@ -178,6 +184,11 @@ impl Denoiser {
             blocks: (0..cfg.blocks).map(|i| Block::new(p, &format!("blocks.{i}"), cfg)).collect::<Result<_, _>>()?,
             final_modulation: p.linear("final.modulation", d, 2 * d, true)?,
             output: p.linear("final.output", d, cfg.token_dim(), true)?,
+            // Drawn last, so that a model without it starts from the same weights as before.
+            room: match cfg.room_token {
+                true => Some(p.get("room", &[d, RoomType::ALL.len()], Init::Normal(0.02))?),
+                false => None,
+            },
             named: BTreeMap::new(),
         };
         p.finish()?;
@@ -211,7 +222,11 @@ impl Denoiser {
         let mask = cond.contact_mask.unsqueeze(2)?;
         let count = (mask.sum(1)? + 1e-6)?;
         let pooled = contacts.broadcast_mul(&mask)?.sum(1)?.broadcast_div(&count)?;
-        let c = (time + pooled + self.floor.forward(&cond.floor)? + self.free.forward(&cond.free)?)?.silu()?;
+        let mut c = (time + pooled + self.floor.forward(&cond.floor)? + self.free.forward(&cond.free)?)?;
+        if let Some(room) = &self.room {
+            c = (c + cond.room.matmul(&room.t()?)?)?;
+        }
+        let c = c.silu()?;
 
         let mut h = self.input.forward(x)?;
         if let Some(anchor) = &self.anchor {
@@ -332,7 +347,6 @@ pub(super) fn time_feature_values(t: &[usize]) -> Vec<f32> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::RoomType;
 
     fn random(shape: &[usize], seed: u64) -> Tensor {
         let mut rng = crate::data::Rng::new(seed);
@@ -348,6 +362,12 @@ mod tests {
             contact_mask: Tensor::from_vec(mask, (b, k), &Device::Cpu).unwrap(),
             floor: random(&[b, cfg.floor_points, FLOOR_FEATURES], 2),
             free: random(&[b, cfg.free_points, FREE_FEATURES], 3),
+            room: Tensor::from_vec(
+                (0..b * 3).map(|i| if i % 3 == (i / 3) % 3 { 1.0 } else { 0.0 }).collect::<Vec<f32>>(),
+                (b, 3),
+                &Device::Cpu,
+            )
+            .unwrap(),
         }
     }
 

@@ -13,7 +13,7 @@ use super::checkpoint::{
     CONFIG_FILE, CheckpointMeta, MODEL_FORMAT, STATE_FILE, STATE_META_FILE, TrainingInfo, WEIGHTS_FILE, fnv1a_hex,
     read_tensors, write_json, write_tensors,
 };
-use super::dataset::{Example, HostBatch, NoisyBatch, balance_categories, load_split};
+use super::dataset::{Example, HostBatch, NoisyBatch, balance_categories, load_split, rooms};
 use super::engine::{Engine, Gradients};
 use super::flat::ParamLayout;
 use super::{Bounds, Denoiser, Dihedral, GenError, ModelConfig, Params, Schedule};
@@ -34,6 +34,11 @@ pub struct TrainOptions {
     /// learn from while `data`'s val and test splits stay the ones every model is measured on.
     /// Their pieces are encoded within `data`'s bounds; their stats.json joins the data hash.
     pub extra_data: Vec<PathBuf>,
+    /// Datasets of the other room types a model with a room token serves
+    /// ([`ModelConfig::serves`]) whose train split alone joins the training set, after the extra
+    /// data: their val and test splits stay out, to measure the model on them. Encoded within
+    /// `data`'s bounds; their stats.json joins the data hash.
+    pub joint_data: Vec<PathBuf>,
     /// Model folder to write.
     pub out: PathBuf,
     /// Model shape (its room type must be the dataset's).
@@ -75,6 +80,7 @@ impl TrainOptions {
         TrainOptions {
             data,
             extra_data: Vec::new(),
+            joint_data: Vec::new(),
             out,
             model,
             steps: 12_000,
@@ -187,20 +193,22 @@ pub fn train(
     let bounds = Bounds::from_stats(train_split);
     let mut train_set = load_split(&opts.data, "train", &bounds, cfg)?;
     let mut hashed = stats_bytes.clone();
-    for extra in &opts.extra_data {
+    let more = opts.extra_data.iter().map(|d| (d, &["train", "val", "test"][..]));
+    for (extra, splits) in more.chain(opts.joint_data.iter().map(|d| (d, &["train"][..]))) {
         let extra_stats = read_stats(extra)?;
-        if extra_stats.room_type != cfg.room_type {
+        if !cfg.serves(extra_stats.room_type) {
             return Err(GenError::Input {
                 path: extra.clone(),
-                message: format!("dataset is {} but the model is for {}", extra_stats.room_type, cfg.room_type),
+                message: format!("dataset is {} but the model is for {}", extra_stats.room_type, rooms(cfg)),
             });
         }
         hashed.extend(std::fs::read(extra.join("stats.json")).map_err(|e| GenError::io(extra.join("stats.json"), e))?);
-        for split in ["train", "val", "test"] {
+        for split in splits {
             train_set.extend(load_split(extra, split, &bounds, cfg)?);
         }
     }
-    let data_hash = if opts.extra_data.is_empty() { data_hash } else { fnv1a_hex(&hashed) };
+    let more_data = !opts.extra_data.is_empty() || !opts.joint_data.is_empty();
+    let data_hash = if more_data { fnv1a_hex(&hashed) } else { data_hash };
     balance_categories(&mut train_set, opts.category_balance, cfg);
     if train_set.is_empty() {
         return Err(GenError::Input { path: opts.data.join("train"), message: "no scenes".into() });

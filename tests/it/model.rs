@@ -159,6 +159,50 @@ fn extra_data_joins_the_training_set_and_must_be_of_the_same_room_type() {
 }
 
 #[test]
+fn joint_data_adds_its_train_split_and_a_room_token_model_generates_both_room_types() {
+    let dir = tempfile::tempdir().unwrap();
+    let living = dataset(dir.path(), RoomType::Living);
+    let dining = dataset(dir.path(), RoomType::Dining);
+    let count = |d: &Path, split: &str| std::fs::read_dir(d.join(split)).unwrap().count();
+    let mut o = options(&living, &dir.path().join("model"));
+    o.steps = 2;
+    o.joint_data = vec![dining.clone()];
+    // Without a room token the model is a living-room model alone.
+    o.model = ModelConfig::tiny(RoomType::Living);
+    let err = train(&o, &AtomicBool::new(false), &mut ()).unwrap_err().to_string();
+    assert!(err.contains("dining") && err.contains(dining.to_str().unwrap()), "{err}");
+    o.model.room_token = true;
+    let outcome = train(&o, &AtomicBool::new(false), &mut ()).unwrap();
+    assert_eq!(outcome.step, 2);
+    let model = dir.path().join("model");
+    let ckpt = Checkpoint::load(&model).unwrap();
+    // Only the dining train split joins: its val and test rooms stay out.
+    assert!(count(&dining, "val") + count(&dining, "test") > 0);
+    assert_eq!(ckpt.meta.training.train_scenes, count(&living, "train") + count(&dining, "train"));
+    // One model generates living and dining rooms in one call; a bedroom is refused.
+    let inputs = dir.path().join("inputs");
+    std::fs::create_dir_all(&inputs).unwrap();
+    for (data, name) in [(&living, "a_living.json"), (&dining, "b_dining.json")] {
+        let first = std::fs::read_dir(data.join("test")).unwrap().next().unwrap().unwrap().path();
+        let mut scene = Scene::load(&first).unwrap();
+        scene.objects.clear();
+        scene.save(inputs.join(name)).unwrap();
+    }
+    let (i, m) = (inputs.to_str().unwrap(), model.to_str().unwrap());
+    let out = dir.path().join("out");
+    let o = shade_sim(&["-q", "generate", "--input", i, "--out", out.to_str().unwrap(), "--model", m, "--no-repair"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for (name, room) in [("a_living_0.json", RoomType::Living), ("b_dining_0.json", RoomType::Dining)] {
+        assert_eq!(Scene::load(out.join(name)).unwrap().room_type, room);
+    }
+    let bedroom = root().join("scenes/examples/bedroom_rect.json");
+    let o =
+        shade_sim(&["generate", "--input", bedroom.to_str().unwrap(), "--out", out.to_str().unwrap(), "--model", m]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("is a bedroom but the model generates living or dining"), "{}", stderr(&o));
+}
+
+#[test]
 fn train_writes_a_checkpoint_and_generate_is_deterministic() {
     let dir = tempfile::tempdir().unwrap();
     let data = dataset(dir.path(), RoomType::Bedroom);
@@ -398,7 +442,7 @@ fn every_room_type_has_a_shipped_model_and_the_demo_runs_on_it() {
         let file = format!("{stem}.json");
         assert!(std::fs::read(generated.join(&file)).unwrap() == std::fs::read(out.join(&file)).unwrap(), "{stem}");
     }
-    // One --model cannot serve two room types.
+    // A --model must generate every room type of the inputs.
     let o = shade_sim(&[
         "generate",
         "--input",
@@ -409,7 +453,7 @@ fn every_room_type_has_a_shipped_model_and_the_demo_runs_on_it() {
         root().join("models/bedroom").to_str().unwrap(),
     ]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("a --model generates one room type"), "{}", stderr(&o));
+    assert!(stderr(&o).contains("dining_l.json: is a dining but the model generates bedroom"), "{}", stderr(&o));
 }
 
 #[test]

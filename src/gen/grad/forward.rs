@@ -15,6 +15,7 @@ use crate::generator::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES};
 use crate::generator::matmul::LinearAt;
 use crate::generator::model::time_feature_values;
 use crate::generator::{relations, walls};
+use crate::scene::RoomType;
 
 /// A PointNet's activations: ReLU outputs of the first two layers, the third's output and, per
 /// item, the max over the points.
@@ -86,6 +87,10 @@ pub(crate) struct ConditionTape {
     /// The visible boxes' tokens: encoding + the contact-kind vector.
     pub(super) contact_tokens: Vec<f32>,
     pub(super) pooled: Vec<f32>,
+    /// Per item: the room type, one-hot, and with a room token its vector (items × d; empty
+    /// without one).
+    pub(super) rooms: Vec<f32>,
+    pub(super) room: Vec<f32>,
     pub(super) floor: PointTape,
     pub(super) free: PointTape,
 }
@@ -133,6 +138,16 @@ impl ConditionTape {
         debug_assert_eq!(inp.free.len(), b * cfg.free_points * FREE_FEATURES);
         let floor = PointTape::run(p, &net.floor, inp.floor, b);
         let free = PointTape::run(p, &net.free, inp.free, b);
+        let rooms = inp.rooms.to_vec();
+        let room = match net.room {
+            Some(at) => rooms
+                .chunks_exact(RoomType::ALL.len())
+                .flat_map(|onehot| {
+                    (0..d).map(move |j| onehot.iter().enumerate().map(|(r, w)| w * p[at + r * d + j]).sum::<f32>())
+                })
+                .collect(),
+            None => Vec::new(),
+        };
 
         // Rows: objects, then visible contact boxes.
         let objects = b * slots;
@@ -158,6 +173,8 @@ impl ConditionTape {
             contact_act,
             contact_tokens,
             pooled,
+            rooms,
+            room,
             floor,
             free,
         }
@@ -212,7 +229,8 @@ impl StepTape {
         let time_act = ops::silu(&time_pre);
         let time = net.time[1].map(p, &time_act);
         let (floor, free) = (&cond.floor.max, &cond.free.max);
-        let c_pre: Vec<f32> = (0..b * d).map(|i| ((time[i] + cond.pooled[i]) + floor[i]) + free[i]).collect();
+        let mut c_pre: Vec<f32> = (0..b * d).map(|i| ((time[i] + cond.pooled[i]) + floor[i]) + free[i]).collect();
+        c_pre.iter_mut().zip(&cond.room).for_each(|(c, r)| *c += r);
         let c = ops::silu(&c_pre);
         let mut modulation: Vec<Vec<f32>> = net.blocks.iter().map(|block| block.modulation.map(p, &c)).collect();
         modulation.push(net.final_modulation.map(p, &c));

@@ -25,6 +25,7 @@ use super::matmul::LinearAt;
 use super::relations::RELATION_FEATURES;
 use super::walls::WALL_FEATURES;
 use super::{GenError, ModelConfig};
+use crate::scene::RoomType;
 pub(crate) use forward::ConditionTape;
 use rayon::prelude::*;
 
@@ -59,6 +60,9 @@ pub struct GradNet {
     blocks: Vec<BlockAt>,
     final_modulation: LinearAt,
     output: LinearAt,
+    /// With a room token: where the room vectors start (rooms × d: the checkpoint's d × rooms
+    /// matrix, stored transposed).
+    room: Option<usize>,
 }
 
 /// One chunk's conditions.
@@ -68,13 +72,15 @@ pub(crate) struct ConditionInputs<'a> {
     pub(crate) mask: &'a [f32],
     pub(crate) floor: &'a [f32],
     pub(crate) free: &'a [f32],
+    /// Items × [`RoomType::ALL`]: the room type, one-hot.
+    pub(crate) rooms: &'a [f32],
 }
 
 impl<'a> ConditionInputs<'a> {
     /// Items `start..end` of a batch's conditions, laid out as `HostBatch` keeps them (contact
-    /// boxes, their mask, floor-plan points, free-space points; item after item).
-    pub(crate) fn span(cfg: &ModelConfig, all: [&'a [f32]; 4], start: usize, end: usize) -> ConditionInputs<'a> {
-        let [contacts, mask, floor, free] = all;
+    /// boxes, their mask, floor-plan points, free-space points, room types; item after item).
+    pub(crate) fn span(cfg: &ModelConfig, all: [&'a [f32]; 5], start: usize, end: usize) -> ConditionInputs<'a> {
+        let [contacts, mask, floor, free, rooms] = all;
         let span = |values: &'a [f32], width: usize| &values[start * width..end * width];
         ConditionInputs {
             items: end - start,
@@ -82,6 +88,7 @@ impl<'a> ConditionInputs<'a> {
             mask: span(mask, cfg.max_contacts),
             floor: span(floor, cfg.floor_points * FLOOR_FEATURES),
             free: span(free, cfg.free_points * FREE_FEATURES),
+            rooms: span(rooms, RoomType::ALL.len()),
         }
     }
 }
@@ -147,6 +154,10 @@ impl GradNet {
             blocks,
             final_modulation: linear("final.modulation", d, 2 * d)?,
             output: linear("final.output", d, cfg.token_dim())?,
+            room: match cfg.room_token {
+                true => Some(find(layout, "room", &[d, RoomType::ALL.len()])?),
+                false => None,
+            },
         })
     }
 
@@ -190,7 +201,7 @@ impl GradNet {
             .map(|start| {
                 let end = (start + ITEMS_PER_CHUNK).min(host.size);
                 let span = |values: &'a [f32], width: usize| &values[start * width..end * width];
-                let conditions = [&host.contacts[..], &host.contact_mask, &host.floor, &host.free];
+                let conditions = [&host.contacts[..], &host.contact_mask, &host.floor, &host.free, &host.rooms];
                 ChunkInputs {
                     cond: ConditionInputs::span(cfg, conditions, start, end),
                     t: &batch.t[start..end],

@@ -5,13 +5,13 @@ use crate::generator::{Engine, Example, Gradients, HostBatch, Params, Schedule, 
 use crate::scene::RoomType;
 use std::collections::BTreeMap;
 
-/// A batch of `n` real examples of `room` with every corner case in it: items with 0 contact boxes
-/// and with the most, a free-space mask with nobody walking (every point the same: ties in the
-/// PointNet's max), steps from 0 to T − 1.
-fn batch(room: RoomType, cfg: &ModelConfig, bounds: &crate::generator::Bounds, n: usize) -> NoisyBatch {
+/// A batch of `n` real examples of `rooms` (in turn) with every corner case in it: items with 0
+/// contact boxes and with the most, a free-space mask with nobody walking (every point the same:
+/// ties in the PointNet's max), steps from 0 to T − 1.
+fn batch(rooms: &[RoomType], cfg: &ModelConfig, bounds: &crate::generator::Bounds, n: usize) -> NoisyBatch {
     let mut host = HostBatch::default();
     for seed in 0..n as u64 {
-        let scene = generate_room(room, 11, seed, false).scene;
+        let scene = generate_room(rooms[seed as usize % rooms.len()], 11, seed, false).scene;
         let mut e = Example::of(&scene, bounds, cfg);
         if seed == 1 {
             e.features.contact_mask.fill(0.0);
@@ -59,7 +59,7 @@ fn gradients_equal_candles_on_a_trained_model() {
         let checkpoint = shipped_model(room).unwrap();
         let cfg = &checkpoint.meta.model;
         let (layout, params) = ParamLayout::of(&shipped_weights(room)).unwrap();
-        let b = batch(room, cfg, &checkpoint.meta.bounds, 11);
+        let b = batch(&[room], cfg, &checkpoint.meta.bounds, 11);
         for (name, (worst, scale)) in compare(&layout, &params, &b, cfg) {
             assert!(scale > 0.0, "{room} {name}: no gradient");
             assert!(worst <= 1e-4 * scale, "{room} {name}: worst {worst:e} of {scale:e}");
@@ -75,7 +75,7 @@ fn gradients_equal_candles_at_initialisation() {
     crate::generator::Denoiser::new(&cfg, &mut init).unwrap();
     let (layout, params) = ParamLayout::of(&init.snapshot().unwrap()).unwrap();
     let checkpoint = shipped_model(RoomType::Dining).unwrap();
-    let b = batch(RoomType::Dining, &cfg, &checkpoint.meta.bounds, 5);
+    let b = batch(&[RoomType::Dining], &cfg, &checkpoint.meta.bounds, 5);
     let grads = compare(&layout, &params, &b, &cfg);
     for (name, (worst, scale)) in &grads {
         assert!(*worst <= 1e-4 * scale.max(1e-6), "{name}: worst {worst:e} of {scale:e}");
@@ -84,11 +84,16 @@ fn gradients_equal_candles_at_initialisation() {
 }
 
 #[test]
-fn gradients_equal_candles_with_anchored_slots_relations_self_conditioning_and_every_weight_set() {
+fn gradients_equal_candles_with_anchored_slots_relations_self_conditioning_rooms_and_every_weight_set() {
     // Every parameter random (the zero-initialised modulations and outputs too), so every path —
-    // the anchored slots' box embedding, the relation bias and the self-conditioning estimate's
-    // embedding included — carries a gradient.
-    let cfg = ModelConfig { self_condition: true, min_snr: Some(5.0), ..ModelConfig::tiny(RoomType::Living) };
+    // the anchored slots' box embedding, the relation bias, the self-conditioning estimate's
+    // embedding and the room token included — carries a gradient.
+    let cfg = ModelConfig {
+        self_condition: true,
+        min_snr: Some(5.0),
+        room_token: true,
+        ..ModelConfig::tiny(RoomType::Living)
+    };
     assert!(cfg.anchor_scale > 0.0);
     let mut init = Params::random(4);
     crate::generator::Denoiser::new(&cfg, &mut init).unwrap();
@@ -96,7 +101,7 @@ fn gradients_equal_candles_with_anchored_slots_relations_self_conditioning_and_e
     let mut rng = Rng::new(8);
     let params: Vec<f32> = (0..layout.len()).map(|_| 0.2 * rng.normal() as f32).collect();
     let checkpoint = shipped_model(RoomType::Living).unwrap();
-    let b = batch(RoomType::Living, &cfg, &checkpoint.meta.bounds, 7);
+    let b = batch(&[RoomType::Living, RoomType::Dining], &cfg, &checkpoint.meta.bounds, 7);
     assert!(b.self_condition.contains(&true) && b.self_condition.contains(&false), "{:?}", b.self_condition);
     assert_ne!(b.loss_weights, b.host.weights, "Min-SNR weights");
     let grads = compare(&layout, &params, &b, &cfg);
@@ -113,4 +118,11 @@ fn gradients_equal_candles_with_anchored_slots_relations_self_conditioning_and_e
     assert!(grads.contains_key("anchor.weight") && grads.contains_key("relation.0.weight"));
     assert!(cfg.wall_features && grads.contains_key("walls.weight"));
     assert!(grads.contains_key("estimate.weight"));
+    // Living and dining rooms in one batch: both rows of the room table learn, the bedroom's not.
+    let (room, _) = layout.find("room").unwrap();
+    let net = GradNet::new(&cfg, &layout).unwrap();
+    let (_, fused) = net.loss_and_grad(&params, &b);
+    let d = cfg.d_model;
+    let row = |r: usize| fused[room.start + r * d..room.start + (r + 1) * d].iter().any(|&g| g != 0.0);
+    assert_eq!([row(0), row(1), row(2)], [false, true, true]);
 }
