@@ -384,6 +384,46 @@ fn a_clip_that_leaves_the_floor_plan_is_an_error_naming_the_frame() {
     assert!(!out.exists());
 }
 
+#[test]
+fn a_clip_whose_body_swings_into_a_wall_is_an_error_naming_the_frame() {
+    // The walk goes along the west wall (x = 0): 30 cm from it, the pelvis and feet stay on the
+    // floor but the left arm swings 3 cm into the wall, which `check` would find in every layout;
+    // 40 cm from it, the input is made and passes `check` as it is.
+    let dir = tempfile::tempdir().unwrap();
+    let import = |x: &str| {
+        let out = dir.path().join(format!("walk_{x}.json"));
+        let (clip, place) = (clip("freebvh_walk.bvh"), format!("{x},1,0"));
+        let o = shade_sim(&[
+            "import-motion",
+            clip.to_str().unwrap(),
+            "--room",
+            "bedroom",
+            "--floor",
+            "4x4",
+            "--place",
+            &place,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        (o, out)
+    };
+    let (o, out) = import("0.3");
+    assert_eq!(o.status.code(), Some(2));
+    let err = stderr(&o);
+    assert!(
+        err.starts_with("error: ")
+            && err.contains("freebvh_walk.bvh: frame ")
+            && err.contains("the left elbow–left wrist is 0.03 m inside the wall of floor-plan edge 3"),
+        "{err}"
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(!out.exists());
+    let (o, out) = import("0.4");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = shade_sim(&["check", "--no-stability", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stdout(&o));
+}
+
 /// A `.npy` (version 1) with the header `dict` and 528 zero bytes of data.
 fn npy_with_header(dict: &str) -> Vec<u8> {
     let mut out = b"\x93NUMPY\x01\x00".to_vec();
