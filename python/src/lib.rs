@@ -262,11 +262,8 @@ fn generate<'py>(
         };
         let model = &generator.checkpoint.meta.model;
         if !model.serves(*room) {
-            let rooms: Vec<String> = model.rooms().iter().map(|r| r.to_string()).collect();
-            return Err(PyValueError::new_err(format!(
-                "input is a {room} but the model generates {}",
-                rooms.join(" or ")
-            )));
+            let message = format!("input is a {room} but the model generates {}", model.room_names());
+            return Err(PyValueError::new_err(message));
         }
         generators.push(generator);
     }

@@ -123,7 +123,7 @@ pub fn load_model(dir: Option<&Path>, room: RoomType, input: &Path) -> anyhow::R
         model.serves(room),
         "{}: is a {room} but the model generates {}",
         input.display(),
-        model.rooms().iter().map(|r| r.to_string()).collect::<Vec<_>>().join(" or ")
+        model.room_names()
     );
     Ok(Generator::new(checkpoint))
 }

@@ -274,6 +274,11 @@ impl ModelConfig {
         RoomType::ALL.into_iter().filter(|&r| self.serves(r)).collect()
     }
 
+    /// [`ModelConfig::rooms`] for messages: "living or dining".
+    pub fn room_names(&self) -> String {
+        self.rooms().iter().map(|r| r.to_string()).collect::<Vec<_>>().join(" or ")
+    }
+
     /// Object slots (tokens) per scene.
     pub fn slots(&self) -> usize {
         self.room_type.max_objects()
@@ -399,6 +404,7 @@ mod tests {
         assert_eq!(living.rooms(), [RoomType::Living]);
         let joint = ModelConfig { room_token: true, ..living };
         assert_eq!(joint.rooms(), [RoomType::Living, RoomType::Dining]);
+        assert_eq!(joint.room_names(), "living or dining");
         let bedroom = ModelConfig { room_token: true, ..ModelConfig::tiny(RoomType::Bedroom) };
         assert_eq!(bedroom.rooms(), [RoomType::Bedroom]);
     }

@@ -100,17 +100,12 @@ pub fn load_split(dir: &Path, split: &str, bounds: &Bounds, cfg: &ModelConfig) -
             if !cfg.serves(scene.room_type) {
                 return Err(GenError::Input {
                     path: f.clone(),
-                    message: format!("room type {} but the model is for {}", scene.room_type, rooms(cfg)),
+                    message: format!("room type {} but the model is for {}", scene.room_type, cfg.room_names()),
                 });
             }
             Ok(Example::of(&scene, bounds, cfg))
         })
         .collect()
-}
-
-/// The room types `cfg` serves, for messages ("living or dining").
-pub fn rooms(cfg: &ModelConfig) -> String {
-    cfg.rooms().iter().map(|r| r.to_string()).collect::<Vec<_>>().join(" or ")
 }
 
 /// A batch on the host, ready to become tensors.

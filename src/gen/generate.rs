@@ -72,11 +72,7 @@ impl Generator {
         if let Some(bad) = inputs.iter().find(|s| !model.serves(s.room_type)) {
             return Err(GenError::Input {
                 path: Default::default(),
-                message: format!(
-                    "input is a {} but the model generates {}",
-                    bad.room_type,
-                    super::dataset::rooms(model)
-                ),
+                message: format!("input is a {} but the model generates {}", bad.room_type, model.room_names()),
             });
         }
         let jobs: Vec<(usize, usize)> = (0..inputs.len()).flat_map(|i| (0..samples).map(move |k| (i, k))).collect();

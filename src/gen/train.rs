@@ -13,7 +13,7 @@ use super::checkpoint::{
     CONFIG_FILE, CheckpointMeta, MODEL_FORMAT, STATE_FILE, STATE_META_FILE, TrainingInfo, WEIGHTS_FILE, fnv1a_hex,
     read_tensors, write_json, write_tensors,
 };
-use super::dataset::{Example, HostBatch, NoisyBatch, balance_categories, load_split, rooms};
+use super::dataset::{Example, HostBatch, NoisyBatch, balance_categories, load_split};
 use super::engine::{Engine, Gradients};
 use super::flat::ParamLayout;
 use super::{Bounds, Denoiser, Dihedral, GenError, ModelConfig, Params, Schedule};
@@ -199,7 +199,7 @@ pub fn train(
         if !cfg.serves(extra_stats.room_type) {
             return Err(GenError::Input {
                 path: extra.clone(),
-                message: format!("dataset is {} but the model is for {}", extra_stats.room_type, rooms(cfg)),
+                message: format!("dataset is {} but the model is for {}", extra_stats.room_type, cfg.room_names()),
             });
         }
         hashed.extend(std::fs::read(extra.join("stats.json")).map_err(|e| GenError::io(extra.join("stats.json"), e))?);
