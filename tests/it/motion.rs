@@ -358,30 +358,9 @@ fn people_inside_each_other_are_warned_about_where_inputs_are_made_checked_and_f
 #[test]
 fn a_clip_that_leaves_the_floor_plan_is_an_error_naming_the_frame() {
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("input.json");
     // The walk goes about 1.5 m forward: from 0.5 m before the wall, it leaves the room.
-    let o = shade_sim(&[
-        "import-motion",
-        clip("freebvh_walk.bvh").to_str().unwrap(),
-        "--room",
-        "bedroom",
-        "--floor",
-        "4x4",
-        "--place",
-        "2,3.5,0",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(o.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        err.starts_with("error: ")
-            && err.contains("freebvh_walk.bvh: frame ")
-            && err.contains("outside the floor plan"),
-        "{err}"
-    );
-    assert_eq!(err.lines().count(), 1, "{err}");
-    assert!(!out.exists());
+    let (o, out) = import_walk(dir.path(), "2,3.5,0");
+    expect_one_error(&o, &out, "outside the floor plan");
 }
 
 #[test]
@@ -390,38 +369,30 @@ fn a_clip_whose_body_swings_into_a_wall_is_an_error_naming_the_frame() {
     // floor but the left arm swings 3 cm into the wall, which `check` would find in every layout;
     // 40 cm from it, the input is made and passes `check` as it is.
     let dir = tempfile::tempdir().unwrap();
-    let import = |x: &str| {
-        let out = dir.path().join(format!("walk_{x}.json"));
-        let (clip, place) = (clip("freebvh_walk.bvh"), format!("{x},1,0"));
-        let o = shade_sim(&[
-            "import-motion",
-            clip.to_str().unwrap(),
-            "--room",
-            "bedroom",
-            "--floor",
-            "4x4",
-            "--place",
-            &place,
-            "--out",
-            out.to_str().unwrap(),
-        ]);
-        (o, out)
-    };
-    let (o, out) = import("0.3");
-    assert_eq!(o.status.code(), Some(2));
-    let err = stderr(&o);
-    assert!(
-        err.starts_with("error: ")
-            && err.contains("freebvh_walk.bvh: frame ")
-            && err.contains("the left elbow–left wrist is 0.03 m inside the wall of floor-plan edge 3"),
-        "{err}"
-    );
-    assert_eq!(err.lines().count(), 1, "{err}");
-    assert!(!out.exists());
-    let (o, out) = import("0.4");
+    let (o, out) = import_walk(dir.path(), "0.3,1,0");
+    expect_one_error(&o, &out, "the left elbow–left wrist is 0.03 m inside the wall of floor-plan edge 3");
+    let (o, out) = import_walk(dir.path(), "0.4,1,0");
     assert!(o.status.success(), "{}", stderr(&o));
     let o = shade_sim(&["check", "--no-stability", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stdout(&o));
+}
+
+/// `freebvh_walk.bvh` imported into a 4 × 4 m bedroom, placed at `place`, written into `dir`.
+fn import_walk(dir: &Path, place: &str) -> (std::process::Output, PathBuf) {
+    let out = dir.join(format!("walk_{place}.json"));
+    let clip = clip("freebvh_walk.bvh");
+    let args = ["--room", "bedroom", "--floor", "4x4", "--place", place, "--out", out.to_str().unwrap()];
+    let o = shade_sim(&[&["import-motion", clip.to_str().unwrap()][..], &args].concat());
+    (o, out)
+}
+
+/// `o` failed with one error line naming the walk's file, a frame and `what`, writing nothing to `out`.
+fn expect_one_error(o: &std::process::Output, out: &Path, what: &str) {
+    assert_eq!(o.status.code(), Some(2));
+    let err = stderr(o);
+    assert!(err.starts_with("error: ") && err.contains("freebvh_walk.bvh: frame ") && err.contains(what), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(!out.exists());
 }
 
 /// A `.npy` (version 1) with the header `dict` and 528 zero bytes of data.
