@@ -221,24 +221,6 @@ pub fn import_motion(files: &[PathBuf], opts: &ImportOptions) -> Result<(Scene, 
         let file = files.get(human.unwrap_or(0)).cloned().unwrap_or_default();
         return Err(MotionError::invalid(file, format!("the input it makes is not valid: {problem}")));
     }
-    // A body inside a wall fails `check` whatever the layout (the joints tested above can be inside
-    // the floor while a shoulder or an arm swung out is in the wall): refused here, as `check`
-    // would find it, at its deepest.
-    let walls = crate::sim::people_in_walls(&scene, &crate::sim::CheckConfig::default());
-    if let Some(v) = walls.iter().max_by(|a, b| a.depth.total_cmp(&b.depth)) {
-        let human = scene.humans.iter().position(|h| Some(&h.id) == v.human.as_ref()).unwrap_or(0);
-        let frame = v.frame.unwrap_or(0);
-        let edge = v.object.as_deref().and_then(|o| o.strip_prefix("wall")).unwrap_or("?");
-        return Err(MotionError::invalid(
-            files.get(human).cloned().unwrap_or_default(),
-            format!(
-                "frame {frame} ({:.2} s): the {} is {:.2} m inside the wall of floor-plan edge {edge}; place the clip with --place",
-                frame as f64 / opts.fps,
-                v.bone.as_deref().unwrap_or("body").replace('_', " ").replace('-', "–"),
-                v.depth
-            ),
-        ));
-    }
     Ok((scene, reports))
 }
 
