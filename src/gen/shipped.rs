@@ -15,8 +15,8 @@ pub fn shipped_model(room: RoomType) -> Result<Checkpoint, GenError> {
         GenError::checkpoint(&origin, format!("no {room} model was shipped with this build; pass --model DIR"))
     })?;
     let meta = parse_meta(config, &origin.join("config.json"))?;
-    if meta.model.room_type != room {
-        return Err(GenError::checkpoint(&origin, format!("shipped config is for {}", meta.model.room_type)));
+    if !meta.model.serves(room) {
+        return Err(GenError::checkpoint(&origin, format!("shipped config is for {}", meta.model.room_names())));
     }
     Checkpoint::from_parts(meta, weights, &origin.join("model.safetensors"))
 }
