@@ -112,10 +112,11 @@ impl GuidanceArgs {
     }
 }
 
-/// The model in `dir`, or the shipped one for `room`; fails when it does not generate `room`.
-pub fn load_model(dir: Option<&Path>, room: RoomType, input: &Path) -> anyhow::Result<Generator> {
-    let checkpoint = match dir {
-        Some(d) => Checkpoint::load(d)?,
+/// The model `custom` (loaded from `--model`), or the shipped one for `room`; fails when it does
+/// not generate `room`.
+pub fn load_model(custom: Option<&Checkpoint>, room: RoomType, input: &Path) -> anyhow::Result<Generator> {
+    let checkpoint = match custom {
+        Some(c) => c.clone(),
         None => shipped_model(room)?,
     };
     let model = &checkpoint.meta.model;
@@ -145,10 +146,11 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
     // One model per room type, in the order the types first appear (with --model: that model for
     // each, which must generate them all).
     let groups = room_groups(&inputs);
+    let custom = args.model.as_deref().map(Checkpoint::load).transpose()?;
     let generators: Vec<Generator> = groups
         .iter()
         .map(|(room, members)| -> anyhow::Result<_> {
-            let generator = load_model(args.model.as_deref(), *room, &files[members[0]])?;
+            let generator = load_model(custom.as_ref(), *room, &files[members[0]])?;
             let generator = if args.no_empty_projection { generator.without_empty_projection() } else { generator };
             Ok(match args.sampling_steps {
                 Some(n) => generator.with_sampling_steps(n),
