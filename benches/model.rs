@@ -42,6 +42,7 @@ fn conditions(cfg: &ModelConfig, b: usize, rng: &mut Rng) -> CondTensors {
         floor: random(&[b, cfg.floor_points, 4], rng),
         free: random(&[b, cfg.free_points, 3], rng),
         room: Tensor::from_vec([1.0f32, 0.0, 0.0].repeat(b), (b, 3), &Device::Cpu).unwrap(),
+        counts: random(&[b, cfg.count_width()], rng),
     }
 }
 
@@ -112,6 +113,7 @@ fn train_batch(s: &Setup, rng: &mut Rng) -> NoisyBatch {
             floor: part(&floor),
             free: part(&free),
             room: vec![1.0, 0.0, 0.0],
+            counts: Vec::new(),
         });
     }
     let per_item = s.cfg.slots() * s.cfg.token_dim();

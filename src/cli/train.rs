@@ -35,6 +35,11 @@ pub struct TrainArgs {
     /// vector per room type joins the condition.
     #[arg(long)]
     pub room_token: bool,
+    /// Count conditioning: the condition also holds the layout's pieces per category; sampling
+    /// draws them from the training rooms with the same contacts and a floor of about the same
+    /// area (kept in config.json).
+    #[arg(long)]
+    pub count_condition: bool,
     /// Model folder to write (config.json, model.safetensors, log.jsonl, loss.png, train state).
     #[arg(long)]
     pub out: PathBuf,
@@ -158,6 +163,7 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
         model.min_snr_floor = args.min_snr_floor;
     }
     model.room_token |= args.room_token;
+    model.count_condition |= args.count_condition;
     let state = args.out.join(shade_sim::generator::checkpoint::STATE_META_FILE);
     anyhow::ensure!(
         args.resume || !state.exists(),

@@ -4,7 +4,7 @@
 //!
 //! Every file is written to a temporary name and renamed, so a stop never leaves half a checkpoint.
 
-use super::{Bounds, Denoiser, GenError, ModelConfig, Params};
+use super::{Bounds, CountPrior, Denoiser, GenError, ModelConfig, Params};
 use crate::scene::Category;
 use crate::scene::write_atomic;
 use candle_core::{Device, Tensor};
@@ -69,6 +69,9 @@ pub struct CheckpointMeta {
     /// it existed, which load unchecked.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub weights_hash: Option<String>,
+    /// With count conditioning: the training rooms' make-ups that sampling draws counts from.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub count_prior: Option<CountPrior>,
 }
 
 /// A loaded model: metadata and the denoiser with its EMA weights.
@@ -145,7 +148,28 @@ pub fn parse_meta(text: &str, origin: &Path) -> Result<CheckpointMeta, GenError>
     if !meta.bounds.is_valid() {
         return Err(GenError::checkpoint(origin, "bounds are not finite and ordered".to_string()));
     }
+    if let Some(problem) = count_prior_problem(&meta) {
+        return Err(GenError::checkpoint(origin, problem));
+    }
     Ok(meta)
+}
+
+/// What is wrong with `meta`'s count prior: a count-conditioned model needs one with rows of its
+/// width for every room type it serves, and no room of a type it does not serve.
+fn count_prior_problem(meta: &CheckpointMeta) -> Option<String> {
+    let model = &meta.model;
+    let Some(prior) = &meta.count_prior else {
+        return model.count_condition.then(|| "count conditioning needs a count_prior".to_string());
+    };
+    let width = model.count_width();
+    if let Some(bad) = prior.rooms.iter().find(|r| r.3.len() != width || !model.serves(r.0) || !r.2.is_finite()) {
+        return Some(format!(
+            "count_prior room {bad:?} is not a {} room with a finite area and {width} counts",
+            model.room_names()
+        ));
+    }
+    let missing = model.rooms().into_iter().find(|&room| !prior.rooms.iter().any(|r| r.0 == room));
+    missing.map(|room| format!("count_prior has no {room} room"))
 }
 
 /// Tensors of a safetensors file's bytes.

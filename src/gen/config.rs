@@ -94,6 +94,13 @@ pub struct ModelConfig {
     /// the model serves `room_type` alone.
     #[serde(default)]
     pub room_token: bool,
+    /// Count conditioning: the condition also holds how many pieces of each category the layout
+    /// has (a bias-free linear layer on the counts, added to the condition like the room token).
+    /// Training reads a room's own counts; sampling draws them from the model's
+    /// [`super::CountPrior`], the training rooms with the same people in them. Off in older
+    /// configs: the model chooses the counts itself.
+    #[serde(default)]
+    pub count_condition: bool,
 }
 
 /// Which noise levels the T steps visit.
@@ -202,6 +209,7 @@ impl ModelConfig {
             min_snr: None,
             min_snr_floor: None,
             room_token: false,
+            count_condition: false,
         }
     }
 
@@ -245,6 +253,7 @@ impl ModelConfig {
             min_snr: None,
             min_snr_floor: None,
             room_token: false,
+            count_condition: false,
         }
     }
 
@@ -288,6 +297,12 @@ impl ModelConfig {
     /// anchored slots; boxes beyond `max_contacts` are not read).
     pub fn anchored_slots(&self, boxes: usize) -> usize {
         if self.anchor_scale > 0.0 { boxes.min(self.max_contacts) } else { 0 }
+    }
+
+    /// Width of the count condition: one value per category with [`Self::count_condition`], none
+    /// without.
+    pub fn count_width(&self) -> usize {
+        if self.count_condition { self.classes() - 1 } else { 0 }
     }
 
     /// Classes including the final "empty" class.

@@ -2,6 +2,7 @@
 //! conditioning features), and batches assembled from it with optional dihedral augmentation.
 
 use super::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES};
+use super::count_prior::{PriorRoom, contact_kinds};
 use super::model::CondTensors;
 use super::{Bounds, Dihedral, Features, GenError, ModelConfig, Prediction, Schedule, anchors, tokens};
 use crate::data::{DataError, Rng};
@@ -19,8 +20,10 @@ pub struct Example {
     pub tokens: Vec<f32>,
     /// Loss weights, same shape.
     pub weights: Vec<f32>,
-    /// Conditioning features.
+    /// Conditioning features (with count conditioning: the room's own counts).
     pub features: Features,
+    /// The room as a count prior keeps it (its counts are the tokens' pieces per category).
+    pub make_up: PriorRoom,
 }
 
 impl Example {
@@ -29,7 +32,19 @@ impl Example {
         let cond = Conditions::of(scene);
         let boxes: Vec<OBox> = cond.contact_boxes.iter().map(|b| b.obox).collect();
         let (tokens, weights) = tokens::encode(scene, cond.window.center, &boxes, bounds, cfg);
-        Example { tokens, weights, features: Features::of(&cond, scene.room_type, bounds, cfg) }
+        let mut counts = vec![0u8; cfg.classes() - 1];
+        for t in tokens.chunks_exact(cfg.token_dim()) {
+            if let Some(n) = counts.get_mut(tokens::slot_class(t, cfg)) {
+                *n = n.saturating_add(1);
+            }
+        }
+        let mut features = Features::of(&cond, scene.room_type, bounds, cfg);
+        if cfg.count_condition {
+            features.set_counts(&counts);
+        }
+        let area = scene.floor_plan.polygon().area();
+        let make_up = PriorRoom::new(scene.room_type, contact_kinds(&cond), area, counts);
+        Example { tokens, weights, features, make_up }
     }
 
     /// This example under the symmetry `g`.
@@ -122,6 +137,7 @@ pub struct HostBatch {
     pub(super) floor: Vec<f32>,
     pub(super) free: Vec<f32>,
     pub(super) rooms: Vec<f32>,
+    pub(super) counts: Vec<f32>,
 }
 
 impl HostBatch {
@@ -142,6 +158,7 @@ impl HostBatch {
         self.floor.extend_from_slice(&f.floor);
         self.free.extend_from_slice(&f.free);
         self.rooms.extend_from_slice(&f.room);
+        self.counts.extend_from_slice(&f.counts);
     }
 
     /// The conditioning as tensors.
@@ -154,6 +171,7 @@ impl HostBatch {
             floor: Tensor::from_slice(&self.floor, (b, cfg.floor_points, FLOOR_FEATURES), dev)?,
             free: Tensor::from_slice(&self.free, (b, cfg.free_points, FREE_FEATURES), dev)?,
             room: Tensor::from_slice(&self.rooms, (b, RoomType::ALL.len()), dev)?,
+            counts: Tensor::from_slice(&self.counts, (b, cfg.count_width()), dev)?,
         })
     }
 

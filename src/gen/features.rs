@@ -22,7 +22,13 @@ pub struct Features {
     pub free: Vec<f32>,
     /// The room type, one-hot over [`RoomType::ALL`] (read by models with a room token).
     pub room: Vec<f32>,
+    /// Pieces per category ([`ModelConfig::count_width`]; × [`COUNT_SCALE`]), read by models with
+    /// count conditioning; zeros until [`Features::set_counts`].
+    pub counts: Vec<f32>,
 }
+
+/// How a piece count enters the count condition: 4 pieces of a category read as 1.
+pub const COUNT_SCALE: f32 = 0.25;
 
 impl Features {
     /// Features of `cond`, the conditions of a room of type `room`, for a model of `cfg` with
@@ -73,7 +79,16 @@ impl Features {
             }
         }
         let room = RoomType::ALL.map(|r| if r == room { 1.0 } else { 0.0 }).to_vec();
-        Features { contacts, contact_mask, floor, free, room }
+        let counts = vec![0.0; cfg.count_width()];
+        Features { contacts, contact_mask, floor, free, room, counts }
+    }
+
+    /// Sets the count condition to `counts` pieces per category (the model's class order).
+    pub fn set_counts(&mut self, counts: &[u8]) {
+        debug_assert_eq!(counts.len(), self.counts.len());
+        for (dst, &n) in self.counts.iter_mut().zip(counts) {
+            *dst = f32::from(n) * COUNT_SCALE;
+        }
     }
 
     /// Applies `g` to every position and direction.

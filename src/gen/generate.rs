@@ -1,6 +1,7 @@
 //! Layout generation for input scenes (floor plan + humans): conditioning, batched sampling,
 //! decoding into shade-scene/1 scenes that keep the input's floor plan and humans.
 
+use super::count_prior::contact_kinds;
 use super::dataset::HostBatch;
 use super::sampler::{Guidance, empty_projection_steps, sample};
 use super::{Checkpoint, Features, GenError, Schedule, tokens};
@@ -10,6 +11,9 @@ use crate::scene::Scene;
 
 /// Makes the guidance of one batch from its input scenes (`None`: unguided).
 pub type GuidanceFactory = dyn FnMut(&[&Scene]) -> Option<Box<dyn Guidance>>;
+
+/// The stream of an item's seed ([`Rng::for_item`]) that draws its counts.
+const COUNT_STREAM: u64 = 1;
 
 /// Scenes sampled together at most (bounded memory, full use of the matrix kernels).
 pub const MAX_BATCH: usize = 64;
@@ -52,6 +56,31 @@ impl Generator {
         Rng::for_item(seed, ((input as u64) << 20) | sample as u64).next_u64()
     }
 
+    /// With count conditioning, the pieces per category (the model's class order) that sample `k`
+    /// of input `i` is conditioned on for the run seed `seed`: drawn from the model's
+    /// [`CountPrior`](super::CountPrior) for the input's room type, contacts and floor area.
+    /// `None` for a model without count conditioning.
+    pub fn counts_of(&self, input: &Scene, i: usize, k: usize, seed: u64) -> Result<Option<Vec<u8>>, GenError> {
+        self.drawn_counts(input, &Conditions::of(input), Self::item_seed(seed, i, k))
+    }
+
+    fn drawn_counts(&self, input: &Scene, cond: &Conditions, item_seed: u64) -> Result<Option<Vec<u8>>, GenError> {
+        let meta = &self.checkpoint.meta;
+        if !meta.model.count_condition {
+            return Ok(None);
+        }
+        let area = input.floor_plan.polygon().area();
+        let mut rng = Rng::for_item(item_seed, COUNT_STREAM);
+        let prior = meta.count_prior.as_ref();
+        match prior.and_then(|p| p.draw(input.room_type, contact_kinds(cond), area, &mut rng)) {
+            Some(counts) => Ok(Some(counts.to_vec())),
+            None => Err(GenError::Input {
+                path: Default::default(),
+                message: format!("the model's count prior has no {} room", input.room_type),
+            }),
+        }
+    }
+
     /// `samples` layouts per input, in input order then sample order. Deterministic for `seed`.
     /// Inputs must have the model's room type.
     pub fn generate(&self, inputs: &[Scene], samples: usize, seed: u64) -> Result<Vec<Vec<Scene>>, GenError> {
@@ -91,8 +120,16 @@ impl Generator {
             let mut batch = HostBatch::default();
             let mut seeds = Vec::with_capacity(chunk.len());
             for &(i, k) in chunk {
-                batch.push_features(&features[i].1);
-                seeds.push(Self::item_seed(seed, i, k));
+                let item_seed = Self::item_seed(seed, i, k);
+                match self.drawn_counts(&inputs[i], &features[i].0, item_seed)? {
+                    Some(counts) => {
+                        let mut f = features[i].1.clone();
+                        f.set_counts(&counts);
+                        batch.push_features(&f);
+                    }
+                    None => batch.push_features(&features[i].1),
+                }
+                seeds.push(item_seed);
             }
             let scenes: Vec<&Scene> = chunk.iter().map(|&(i, _)| &inputs[i]).collect();
             let mut guide = guidance(&scenes);

@@ -60,19 +60,20 @@ impl FastDenoiser {
         let cfg = self.config();
         let items = cond.contacts.dims3()?.0;
         let host = |t: &candle_core::Tensor| -> Result<Vec<f32>, GenError> { Ok(t.flatten_all()?.to_vec1()?) };
-        let (contacts, mask, floor, free, rooms) = (
+        let (contacts, mask, floor, free, rooms, counts) = (
             host(&cond.contacts)?,
             host(&cond.contact_mask)?,
             host(&cond.floor)?,
             host(&cond.free)?,
             host(&cond.room)?,
+            host(&cond.counts)?,
         );
         let starts: Vec<usize> = (0..items).step_by(SAMPLING_CHUNK).collect();
         let chunks = starts
             .par_iter()
             .map(|&start| {
                 let end = (start + SAMPLING_CHUNK).min(items);
-                let inputs = ConditionInputs::span(cfg, [&contacts, &mask, &floor, &free, &rooms], start, end);
+                let inputs = ConditionInputs::span(cfg, [&contacts, &mask, &floor, &free, &rooms, &counts], start, end);
                 self.net.encode(&self.params, &inputs)
             })
             .collect();

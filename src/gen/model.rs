@@ -31,6 +31,9 @@ pub struct CondTensors {
     pub free: Tensor,
     /// The room type, one-hot over [`RoomType::ALL`] (B, 3).
     pub room: Tensor,
+    /// With count conditioning: pieces per category × [`super::COUNT_SCALE`] (B, categories;
+    /// B × 0 without).
+    pub counts: Tensor,
 }
 
 /// A PointNet: a shared per-point MLP followed by a max over the points.
@@ -142,6 +145,9 @@ pub struct Denoiser {
     /// With a room token: one learned vector per room type ([`RoomType::ALL`]), added to the
     /// condition; a bias-free linear layer's weight (d × rooms) applied to the one-hot room.
     pub(super) room: Option<Tensor>,
+    /// With count conditioning: a bias-free linear layer's weight (d × categories) applied to
+    /// the counts, added to the condition.
+    pub(super) counts: Option<Tensor>,
     /// Every parameter by name (the checkpoint's names).
     pub(super) named: BTreeMap<String, Tensor>,
 }
@@ -189,6 +195,10 @@ impl Denoiser {
                 true => Some(p.get("room", &[d, RoomType::ALL.len()], Init::Normal(0.02))?),
                 false => None,
             },
+            counts: match cfg.count_condition {
+                true => Some(p.get("counts", &[d, cfg.count_width()], Init::Normal(0.02))?),
+                false => None,
+            },
             named: BTreeMap::new(),
         };
         p.finish()?;
@@ -225,6 +235,9 @@ impl Denoiser {
         let mut c = (time + pooled + self.floor.forward(&cond.floor)? + self.free.forward(&cond.free)?)?;
         if let Some(room) = &self.room {
             c = (c + cond.room.matmul(&room.t()?)?)?;
+        }
+        if let Some(counts) = &self.counts {
+            c = (c + cond.counts.matmul(&counts.t()?)?)?;
         }
         let c = c.silu()?;
 
@@ -368,6 +381,7 @@ mod tests {
                 &Device::Cpu,
             )
             .unwrap(),
+            counts: random(&[b, cfg.count_width()], 4),
         }
     }
 

@@ -16,7 +16,7 @@ use super::checkpoint::{
 use super::dataset::{Example, HostBatch, NoisyBatch, balance_categories, load_split};
 use super::engine::{Engine, Gradients};
 use super::flat::ParamLayout;
-use super::{Bounds, Denoiser, Dihedral, GenError, ModelConfig, Params, Schedule};
+use super::{Bounds, CountPrior, Denoiser, Dihedral, GenError, ModelConfig, Params, Schedule};
 use crate::data::{Rng, read_stats};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -210,6 +210,8 @@ pub fn train(
     let more_data = !opts.extra_data.is_empty() || !opts.joint_data.is_empty();
     let data_hash = if more_data { fnv1a_hex(&hashed) } else { data_hash };
     balance_categories(&mut train_set, opts.category_balance, cfg);
+    let count_prior =
+        cfg.count_condition.then(|| CountPrior { rooms: train_set.iter().map(|e| e.make_up.clone()).collect() });
     if train_set.is_empty() {
         return Err(GenError::Input { path: opts.data.join("train"), message: "no scenes".into() });
     }
@@ -297,6 +299,7 @@ pub fn train(
                     categories: cfg.room_type.categories().to_vec(),
                     training: info(step, seconds, val_loss),
                     weights_hash: None,
+                    count_prior: count_prior.clone(),
                 };
                 let state = StateMeta { step, adam_steps: adam.steps, seconds, val_loss, data_hash: data_hash.clone() };
                 save(&opts.out, &meta, &state, &layout, &params, &adam, &ema)?;

@@ -4,7 +4,9 @@
 use crate::{root, shade_sim, stderr, stdout};
 use shade_sim::data::{SynthConfig, synthesize};
 use shade_sim::generator::train::{LogLine, read_log};
-use shade_sim::generator::{Checkpoint, Engine, ModelConfig, TrainObserver, TrainOptions, shipped_rooms, train};
+use shade_sim::generator::{
+    Checkpoint, Engine, Generator, ModelConfig, TrainObserver, TrainOptions, shipped_rooms, train,
+};
 use shade_sim::scene::{RoomType, Scene};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -200,6 +202,57 @@ fn joint_data_adds_its_train_split_and_a_room_token_model_generates_both_room_ty
         shade_sim(&["generate", "--input", bedroom.to_str().unwrap(), "--out", out.to_str().unwrap(), "--model", m]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("is a bedroom but the model generates living or dining"), "{}", stderr(&o));
+}
+
+#[test]
+fn a_count_conditioned_model_keeps_its_training_rooms_make_ups_and_draws_from_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dataset(dir.path(), RoomType::Bedroom);
+    let model = dir.path().join("model");
+    let mut o = options(&data, &model);
+    o.steps = 2;
+    o.model.count_condition = true;
+    train(&o, &AtomicBool::new(false), &mut ()).unwrap();
+    let ckpt = Checkpoint::load(&model).unwrap();
+    let prior = ckpt.meta.count_prior.clone().expect("a count prior");
+    // One row per training room, its pieces counted by category in the model's class order.
+    let mut want: Vec<Vec<u8>> = std::fs::read_dir(data.join("train"))
+        .unwrap()
+        .map(|f| {
+            let scene = Scene::load(f.unwrap().path()).unwrap();
+            let n = |c| scene.objects.iter().filter(|o| o.category == c).count() as u8;
+            ckpt.meta.categories.iter().map(|&c| n(c)).collect()
+        })
+        .collect();
+    let mut got: Vec<Vec<u8>> = prior.rooms.iter().map(|r| r.3.clone()).collect();
+    want.sort();
+    got.sort();
+    assert_eq!(got, want);
+    assert_eq!(prior.rooms.len(), ckpt.meta.training.train_scenes);
+
+    // Each sample's counts are a training room's, the same for the same seed; the layouts come.
+    let input = Scene::load(root().join("scenes/examples/bedroom_rect.json")).unwrap();
+    let generator = Generator::new(ckpt.clone());
+    let drawn: Vec<Vec<u8>> = (0..6).map(|k| generator.counts_of(&input, 0, k, 3).unwrap().unwrap()).collect();
+    assert!(drawn.iter().all(|c| got.contains(c)), "{drawn:?}");
+    assert_eq!(drawn[2], generator.counts_of(&input, 0, 2, 3).unwrap().unwrap());
+    assert_eq!(generator.generate(std::slice::from_ref(&input), 2, 3).unwrap()[0].len(), 2);
+
+    // A count-conditioned config without its prior is a bad checkpoint, named as such.
+    let config = model.join("config.json");
+    let mut json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&config).unwrap()).unwrap();
+    json.as_object_mut().unwrap().remove("count_prior");
+    std::fs::write(&config, serde_json::to_string_pretty(&json).unwrap()).unwrap();
+    let (i, m) = (input_path(), model.to_str().unwrap());
+    let out = dir.path().join("out");
+    let o = shade_sim(&["generate", "--input", &i, "--out", out.to_str().unwrap(), "--model", m]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("count conditioning needs a count_prior"), "{}", stderr(&o));
+    assert!(!out.exists() || std::fs::read_dir(&out).unwrap().next().is_none(), "nothing written");
+}
+
+fn input_path() -> String {
+    root().join("scenes/examples/bedroom_rect.json").to_string_lossy().into_owned()
 }
 
 #[test]

@@ -5,7 +5,6 @@ use super::forward::{PointTape, Tape};
 use super::ops::{self, Parts, PartsGrad};
 use super::{ChunkInputs, GradNet};
 use crate::generator::matmul::LinearAt;
-use crate::scene::RoomType;
 
 /// Adds the gradient of the chunk's share of the loss (divided by `total`) into `g`.
 pub(super) fn run(net: &GradNet, p: &[f32], tape: &Tape, inp: &ChunkInputs, total: f32, g: &mut [f32]) {
@@ -111,11 +110,9 @@ pub(super) fn run(net: &GradNet, p: &[f32], tape: &Tape, inp: &ChunkInputs, tota
     }
     net.final_modulation.backward(p, g, &step.c, &dmod[last], Some(&mut dc));
     ops::silu_backward(&step.c_pre, &mut dc);
-    if let Some(at) = net.room {
-        for (onehot, dc) in cond.rooms.chunks_exact(RoomType::ALL.len()).zip(dc.chunks_exact(d)) {
-            for (r, &w) in onehot.iter().enumerate().filter(|(_, w)| **w != 0.0) {
-                g[at + r * d..at + (r + 1) * d].iter_mut().zip(dc).for_each(|(g, v)| *g += w * v);
-            }
+    for (table, inputs) in [(net.room, &cond.rooms), (net.counts, &cond.counts)] {
+        if let Some(table) = table {
+            table.backward(g, inputs, d, &dc);
         }
     }
 

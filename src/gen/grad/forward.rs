@@ -15,7 +15,6 @@ use crate::generator::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES};
 use crate::generator::matmul::LinearAt;
 use crate::generator::model::time_feature_values;
 use crate::generator::{relations, walls};
-use crate::scene::RoomType;
 
 /// A PointNet's activations: ReLU outputs of the first two layers, the third's output and, per
 /// item, the max over the points.
@@ -87,10 +86,12 @@ pub(crate) struct ConditionTape {
     /// The visible boxes' tokens: encoding + the contact-kind vector.
     pub(super) contact_tokens: Vec<f32>,
     pub(super) pooled: Vec<f32>,
-    /// Per item: the room type, one-hot, and with a room token its vector (items × d; empty
-    /// without one).
+    /// Per item: the room type, one-hot, and the count condition.
     pub(super) rooms: Vec<f32>,
-    pub(super) room: Vec<f32>,
+    pub(super) counts: Vec<f32>,
+    /// Per item: the room token's vector plus the count condition's (items × d; empty without
+    /// either).
+    pub(super) global: Vec<f32>,
     pub(super) floor: PointTape,
     pub(super) free: PointTape,
 }
@@ -138,16 +139,18 @@ impl ConditionTape {
         debug_assert_eq!(inp.free.len(), b * cfg.free_points * FREE_FEATURES);
         let floor = PointTape::run(p, &net.floor, inp.floor, b);
         let free = PointTape::run(p, &net.free, inp.free, b);
-        let rooms = inp.rooms.to_vec();
-        let room = match net.room {
-            Some(at) => rooms
-                .chunks_exact(RoomType::ALL.len())
-                .flat_map(|onehot| {
-                    (0..d).map(move |j| onehot.iter().enumerate().map(|(r, w)| w * p[at + r * d + j]).sum::<f32>())
-                })
-                .collect(),
-            None => Vec::new(),
-        };
+        let (rooms, counts) = (inp.rooms.to_vec(), inp.counts.to_vec());
+        let mut global = Vec::new();
+        for (table, inputs) in [(net.room, &rooms), (net.counts, &counts)] {
+            if let Some(table) = table {
+                let rows = table.map(p, inputs, d);
+                if global.is_empty() {
+                    global = rows;
+                } else {
+                    global.iter_mut().zip(rows).for_each(|(g, r)| *g += r);
+                }
+            }
+        }
 
         // Rows: objects, then visible contact boxes.
         let objects = b * slots;
@@ -174,7 +177,8 @@ impl ConditionTape {
             contact_tokens,
             pooled,
             rooms,
-            room,
+            counts,
+            global,
             floor,
             free,
         }
@@ -230,7 +234,7 @@ impl StepTape {
         let time = net.time[1].map(p, &time_act);
         let (floor, free) = (&cond.floor.max, &cond.free.max);
         let mut c_pre: Vec<f32> = (0..b * d).map(|i| ((time[i] + cond.pooled[i]) + floor[i]) + free[i]).collect();
-        c_pre.iter_mut().zip(&cond.room).for_each(|(c, r)| *c += r);
+        c_pre.iter_mut().zip(&cond.global).for_each(|(c, r)| *c += r);
         let c = ops::silu(&c_pre);
         let mut modulation: Vec<Vec<f32>> = net.blocks.iter().map(|block| block.modulation.map(p, &c)).collect();
         modulation.push(net.final_modulation.map(p, &c));

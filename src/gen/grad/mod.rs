@@ -60,9 +60,40 @@ pub struct GradNet {
     blocks: Vec<BlockAt>,
     final_modulation: LinearAt,
     output: LinearAt,
-    /// With a room token: where the room vectors start (rooms × d: the checkpoint's d × rooms
-    /// matrix, stored transposed).
-    room: Option<usize>,
+    /// With a room token: the room vectors, one per [`RoomType::ALL`].
+    room: Option<TableAt>,
+    /// With count conditioning: one vector per category, weighed by its count.
+    counts: Option<TableAt>,
+}
+
+/// A bias-free linear layer on a per-item input vector into the condition (the room token, the
+/// count condition): the checkpoint's d × width matrix, stored transposed (width rows of d).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct TableAt {
+    at: usize,
+    width: usize,
+}
+
+impl TableAt {
+    /// Per item of `inputs` (items × width): Σ_r input_r × row r (items × d).
+    pub(super) fn map(&self, p: &[f32], inputs: &[f32], d: usize) -> Vec<f32> {
+        let mut out = vec![0f32; inputs.len() / self.width.max(1) * d];
+        for (x, o) in inputs.chunks_exact(self.width).zip(out.chunks_exact_mut(d)) {
+            for (r, &w) in x.iter().enumerate().filter(|(_, w)| **w != 0.0) {
+                o.iter_mut().zip(&p[self.at + r * d..self.at + (r + 1) * d]).for_each(|(o, v)| *o += w * v);
+            }
+        }
+        out
+    }
+
+    /// Adds into `g` the rows' gradient for the output gradient `dout` (items × d).
+    pub(super) fn backward(&self, g: &mut [f32], inputs: &[f32], d: usize, dout: &[f32]) {
+        for (x, dc) in inputs.chunks_exact(self.width).zip(dout.chunks_exact(d)) {
+            for (r, &w) in x.iter().enumerate().filter(|(_, w)| **w != 0.0) {
+                g[self.at + r * d..self.at + (r + 1) * d].iter_mut().zip(dc).for_each(|(g, v)| *g += w * v);
+            }
+        }
+    }
 }
 
 /// One chunk's conditions.
@@ -74,13 +105,16 @@ pub(crate) struct ConditionInputs<'a> {
     pub(crate) free: &'a [f32],
     /// Items × [`RoomType::ALL`]: the room type, one-hot.
     pub(crate) rooms: &'a [f32],
+    /// Items × [`ModelConfig::count_width`]: the count condition.
+    pub(crate) counts: &'a [f32],
 }
 
 impl<'a> ConditionInputs<'a> {
     /// Items `start..end` of a batch's conditions, laid out as `HostBatch` keeps them (contact
-    /// boxes, their mask, floor-plan points, free-space points, room types; item after item).
-    pub(crate) fn span(cfg: &ModelConfig, all: [&'a [f32]; 5], start: usize, end: usize) -> ConditionInputs<'a> {
-        let [contacts, mask, floor, free, rooms] = all;
+    /// boxes, their mask, floor-plan points, free-space points, room types, counts; item after
+    /// item).
+    pub(crate) fn span(cfg: &ModelConfig, all: [&'a [f32]; 6], start: usize, end: usize) -> ConditionInputs<'a> {
+        let [contacts, mask, floor, free, rooms, counts] = all;
         let span = |values: &'a [f32], width: usize| &values[start * width..end * width];
         ConditionInputs {
             items: end - start,
@@ -89,6 +123,7 @@ impl<'a> ConditionInputs<'a> {
             floor: span(floor, cfg.floor_points * FLOOR_FEATURES),
             free: span(free, cfg.free_points * FREE_FEATURES),
             rooms: span(rooms, RoomType::ALL.len()),
+            counts: span(counts, cfg.count_width()),
         }
     }
 }
@@ -155,7 +190,15 @@ impl GradNet {
             final_modulation: linear("final.modulation", d, 2 * d)?,
             output: linear("final.output", d, cfg.token_dim())?,
             room: match cfg.room_token {
-                true => Some(find(layout, "room", &[d, RoomType::ALL.len()])?),
+                true => {
+                    Some(TableAt { at: find(layout, "room", &[d, RoomType::ALL.len()])?, width: RoomType::ALL.len() })
+                }
+                false => None,
+            },
+            counts: match cfg.count_condition {
+                true => {
+                    Some(TableAt { at: find(layout, "counts", &[d, cfg.count_width()])?, width: cfg.count_width() })
+                }
                 false => None,
             },
         })
@@ -201,7 +244,8 @@ impl GradNet {
             .map(|start| {
                 let end = (start + ITEMS_PER_CHUNK).min(host.size);
                 let span = |values: &'a [f32], width: usize| &values[start * width..end * width];
-                let conditions = [&host.contacts[..], &host.contact_mask, &host.floor, &host.free, &host.rooms];
+                let conditions =
+                    [&host.contacts[..], &host.contact_mask, &host.floor, &host.free, &host.rooms, &host.counts];
                 ChunkInputs {
                     cond: ConditionInputs::span(cfg, conditions, start, end),
                     t: &batch.t[start..end],

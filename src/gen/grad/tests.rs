@@ -92,6 +92,7 @@ fn gradients_equal_candles_with_anchored_slots_relations_self_conditioning_rooms
         self_condition: true,
         min_snr: Some(5.0),
         room_token: true,
+        count_condition: true,
         ..ModelConfig::tiny(RoomType::Living)
     };
     assert!(cfg.anchor_scale > 0.0);
@@ -125,4 +126,14 @@ fn gradients_equal_candles_with_anchored_slots_relations_self_conditioning_rooms
     let d = cfg.d_model;
     let row = |r: usize| fused[room.start + r * d..room.start + (r + 1) * d].iter().any(|&g| g != 0.0);
     assert_eq!([row(0), row(1), row(2)], [false, true, true]);
+    // The count condition: a category's row learns where some room holds that category.
+    assert!(grads.contains_key("counts"));
+    let (counts, _) = layout.find("counts").unwrap();
+    let held: Vec<bool> =
+        (0..cfg.count_width()).map(|c| b.host.counts.chunks_exact(cfg.count_width()).any(|n| n[c] > 0.0)).collect();
+    let learns: Vec<bool> = (0..cfg.count_width())
+        .map(|c| fused[counts.start + c * d..counts.start + (c + 1) * d].iter().any(|&g| g != 0.0))
+        .collect();
+    assert_eq!(learns, held);
+    assert!(held.iter().filter(|&&h| h).count() >= 3, "{held:?}");
 }
