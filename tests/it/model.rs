@@ -238,21 +238,34 @@ fn a_count_conditioned_model_keeps_its_training_rooms_make_ups_and_draws_from_th
     assert_eq!(drawn[2], generator.counts_of(&input, 0, 2, 3).unwrap().unwrap());
     assert_eq!(generator.generate(std::slice::from_ref(&input), 2, 3).unwrap()[0].len(), 2);
 
-    // A count-conditioned config without its prior is a bad checkpoint, named as such.
+    // A count-conditioned config without its prior, with a row of another width or a row that
+    // does not parse is a bad checkpoint, named as such; nothing is written.
     let config = model.join("config.json");
-    let mut json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&config).unwrap()).unwrap();
-    json.as_object_mut().unwrap().remove("count_prior");
-    std::fs::write(&config, serde_json::to_string_pretty(&json).unwrap()).unwrap();
-    let (i, m) = (input_path(), model.to_str().unwrap());
-    let out = dir.path().join("out");
-    let o = shade_sim(&["generate", "--input", &i, "--out", out.to_str().unwrap(), "--model", m]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("count conditioning needs a count_prior"), "{}", stderr(&o));
-    assert!(!out.exists() || std::fs::read_dir(&out).unwrap().next().is_none(), "nothing written");
-}
-
-fn input_path() -> String {
-    root().join("scenes/examples/bedroom_rect.json").to_string_lossy().into_owned()
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&config).unwrap()).unwrap();
+    let first = prior.rooms[0].clone();
+    let short = String::from(shade_sim::generator::count_prior::PriorRoom(first.0, first.1, first.2, vec![1]));
+    let bad_rows: [(Option<serde_json::Value>, &str); 3] = [
+        (None, "count conditioning needs a count_prior"),
+        (Some(serde_json::json!({ "rooms": [short] })), "counts"),
+        (Some(serde_json::json!({ "rooms": ["bedroom 1 0 0 12"] })), "is not \"ROOM SIT LIE TOUCH AREA: COUNTS"),
+    ];
+    let input = root().join("scenes/examples/bedroom_rect.json");
+    for (value, message) in bad_rows {
+        let mut json = json.clone();
+        match value {
+            Some(v) => json["count_prior"] = v,
+            None => drop(json.as_object_mut().unwrap().remove("count_prior")),
+        }
+        std::fs::write(&config, serde_json::to_string_pretty(&json).unwrap()).unwrap();
+        let out = dir.path().join("out");
+        let m = model.to_str().unwrap();
+        let o =
+            shade_sim(&["generate", "--input", input.to_str().unwrap(), "--out", out.to_str().unwrap(), "--model", m]);
+        assert_eq!(o.status.code(), Some(2));
+        assert!(stderr(&o).starts_with("error: ") && stderr(&o).contains("config.json"), "{}", stderr(&o));
+        assert!(stderr(&o).contains(message), "{message}: {}", stderr(&o));
+        assert!(!out.exists(), "nothing written");
+    }
 }
 
 #[test]
