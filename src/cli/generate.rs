@@ -51,6 +51,11 @@ pub struct GenerateArgs {
     /// spaced steps; faster, and a v model keeps its precision; default: T).
     #[arg(long)]
     pub sampling_steps: Option<usize>,
+    /// With a count-conditioned model: condition each layout on the input's own pieces per
+    /// category instead of a draw from the model's count prior (furnish a room with the pieces
+    /// it has; the input's pieces are replaced as always).
+    #[arg(long)]
+    pub input_counts: bool,
 }
 
 /// Repair flags (shared with `demo`).
@@ -152,6 +157,7 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
         .map(|(room, members)| -> anyhow::Result<_> {
             let generator = load_model(custom.as_ref(), *room, &files[members[0]])?;
             let generator = if args.no_empty_projection { generator.without_empty_projection() } else { generator };
+            let generator = if args.input_counts { generator.with_input_counts() } else { generator };
             Ok(match args.sampling_steps {
                 Some(n) => generator.with_sampling_steps(n),
                 None => generator,

@@ -27,6 +27,7 @@ pub struct Generator {
     /// The steps the sampler visits ([`Schedule::respaced`]; all T by default).
     visited: Vec<usize>,
     empty_projection: bool,
+    input_counts: bool,
 }
 
 impl Generator {
@@ -34,7 +35,7 @@ impl Generator {
     pub fn new(checkpoint: Checkpoint) -> Generator {
         let schedule = Schedule::of(&checkpoint.meta.model);
         let visited = schedule.respaced(schedule.steps());
-        Generator { checkpoint, schedule, visited, empty_projection: true }
+        Generator { checkpoint, schedule, visited, empty_projection: true, input_counts: false }
     }
 
     /// The same generator sampling with `n` model calls instead of T: the chain respaced to `n`
@@ -51,6 +52,12 @@ impl Generator {
         Generator { empty_projection: false, ..self }
     }
 
+    /// The same generator conditioning a count-conditioned model on each input's own pieces per
+    /// category instead of a draw from its count prior.
+    pub fn with_input_counts(self) -> Generator {
+        Generator { input_counts: true, ..self }
+    }
+
     /// The seed of sample `k` of input `i` for the run seed `seed`.
     pub fn item_seed(seed: u64, input: usize, sample: usize) -> u64 {
         Rng::for_item(seed, ((input as u64) << 20) | sample as u64).next_u64()
@@ -58,8 +65,9 @@ impl Generator {
 
     /// With count conditioning, the pieces per category (the model's class order) that sample `k`
     /// of input `i` is conditioned on for the run seed `seed`: drawn from the model's
-    /// [`CountPrior`](super::CountPrior) for the input's room type, contacts and floor area.
-    /// `None` for a model without count conditioning.
+    /// [`CountPrior`](super::CountPrior) for the input's room type, contacts and floor area, or
+    /// the input's own with [`Generator::with_input_counts`]. `None` for a model without count
+    /// conditioning.
     pub fn counts_of(&self, input: &Scene, i: usize, k: usize, seed: u64) -> Result<Option<Vec<u8>>, GenError> {
         self.drawn_counts(input, &Conditions::of(input), Self::item_seed(seed, i, k))
     }
@@ -68,6 +76,10 @@ impl Generator {
         let meta = &self.checkpoint.meta;
         if !meta.model.count_condition {
             return Ok(None);
+        }
+        if self.input_counts {
+            let count = |c| input.objects.iter().filter(|o| o.category == c).count().min(usize::from(u8::MAX)) as u8;
+            return Ok(Some(meta.categories.iter().map(|&c| count(c)).collect()));
         }
         let area = input.floor_plan.polygon().area();
         let mut rng = Rng::for_item(item_seed, COUNT_STREAM);

@@ -237,6 +237,36 @@ fn a_count_conditioned_model_keeps_its_training_rooms_make_ups_and_draws_from_th
     assert!(drawn.iter().all(|c| got.contains(c)), "{drawn:?}");
     assert_eq!(drawn[2], generator.counts_of(&input, 0, 2, 3).unwrap().unwrap());
     assert_eq!(generator.generate(std::slice::from_ref(&input), 2, 3).unwrap()[0].len(), 2);
+    // With the input's own counts: its pieces per category, whatever the seed.
+    let furnished = Scene::load(std::fs::read_dir(data.join("test")).unwrap().next().unwrap().unwrap().path()).unwrap();
+    let own: Vec<u8> = ckpt
+        .meta
+        .categories
+        .iter()
+        .map(|&c| furnished.objects.iter().filter(|o| o.category == c).count() as u8)
+        .collect();
+    let with_own = Generator::new(ckpt.clone()).with_input_counts();
+    assert!(own.iter().any(|&n| n > 0));
+    for k in 0..3 {
+        assert_eq!(with_own.counts_of(&furnished, 0, k, k as u64).unwrap().unwrap(), own);
+    }
+    let (f, m) = (furnished.clone(), model.to_str().unwrap());
+    let input_file = dir.path().join("furnished.json");
+    f.save(&input_file).unwrap();
+    let out = dir.path().join("own");
+    let o = shade_sim(&[
+        "-q",
+        "generate",
+        "--input",
+        input_file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--model",
+        m,
+        "--input-counts",
+        "--no-repair",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
 
     // A count-conditioned config without its prior, with a row of another width or a row that
     // does not parse is a bad checkpoint, named as such; nothing is written.
