@@ -157,6 +157,10 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
         .map(|(room, members)| -> anyhow::Result<_> {
             let generator = load_model(custom.as_ref(), *room, &files[members[0]])?;
             let generator = if args.no_empty_projection { generator.without_empty_projection() } else { generator };
+            anyhow::ensure!(
+                !args.input_counts || generator.checkpoint.meta.model.count_condition,
+                "--input-counts: the {room} model has no count conditioning (train one with --count-condition)"
+            );
             let generator = if args.input_counts { generator.with_input_counts() } else { generator };
             Ok(match args.sampling_steps {
                 Some(n) => generator.with_sampling_steps(n),

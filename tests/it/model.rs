@@ -267,6 +267,17 @@ fn a_count_conditioned_model_keeps_its_training_rooms_make_ups_and_draws_from_th
         "--no-repair",
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
+    // The shipped models have no count conditioning: the flag is refused, not ignored.
+    let o = shade_sim(&[
+        "generate",
+        "--input",
+        input_file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--input-counts",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--input-counts: the bedroom model has no count conditioning"), "{}", stderr(&o));
 
     // A count-conditioned config without its prior, with a row of another width or a row that
     // does not parse is a bad checkpoint, named as such; nothing is written.
