@@ -23,7 +23,6 @@ fn main() -> anyhow::Result<()> {
         anyhow::bail!("usage: count_agreement MODEL_DIR INPUT_DIR GENERATED_DIR SEED");
     };
     let checkpoint = Checkpoint::load(Path::new(model))?;
-    let categories = checkpoint.meta.categories.clone();
     let generator = Generator::new(checkpoint);
     let seed: u64 = seed.parse().context("SEED")?;
     let (mut rooms, mut exact, mut pieces_off, mut drawn_pieces, mut made_pieces) = (0, 0, 0usize, 0usize, 0usize);
@@ -32,8 +31,7 @@ fn main() -> anyhow::Result<()> {
         let drawn = generator.counts_of(&input, i, 0, seed)?.context("the model has no count conditioning")?;
         let stem = file.file_stem().and_then(|s| s.to_str()).context("file name")?;
         let out = Scene::load(Path::new(generated).join(format!("{stem}_0.json")))?;
-        let made: Vec<usize> =
-            categories.iter().map(|&c| out.objects.iter().filter(|o| o.category == c).count()).collect();
+        let made = out.room_type.category_counts(&out.objects);
         let off: usize = drawn.iter().zip(&made).map(|(&d, &m)| (d as usize).abs_diff(m)).sum();
         rooms += 1;
         exact += usize::from(off == 0);

@@ -49,11 +49,7 @@ impl CountDistribution {
 /// The number of pieces of each of `room`'s categories in `scene` (one-hot order; capped at the
 /// room type's object limit).
 fn room_counts(scene: &Scene, room: RoomType) -> Vec<usize> {
-    let mut counts = vec![0usize; room.categories().len()];
-    for i in scene.objects.iter().filter_map(|o| room.category_index(o.category)) {
-        counts[i] += 1;
-    }
-    counts.iter().map(|&k| k.min(room.max_objects())).collect()
+    room.category_counts(&scene.objects).into_iter().map(|k| k.min(room.max_objects())).collect()
 }
 
 /// A (category, count) the reference never has, and how many generated rooms have it.

@@ -78,8 +78,9 @@ impl Generator {
             return Ok(None);
         }
         if self.input_counts {
-            let count = |c| input.objects.iter().filter(|o| o.category == c).count().min(usize::from(u8::MAX)) as u8;
-            return Ok(Some(meta.categories.iter().map(|&c| count(c)).collect()));
+            // A served room type has the model's categories in the model's order.
+            let counts = input.room_type.category_counts(&input.objects);
+            return Ok(Some(counts.into_iter().map(|n| n.min(usize::from(u8::MAX)) as u8).collect()));
         }
         let area = input.floor_plan.polygon().area();
         let mut rng = Rng::for_item(item_seed, COUNT_STREAM);

@@ -268,6 +268,16 @@ impl RoomType {
         self.categories().iter().position(|&c| c == category)
     }
 
+    /// How many of `objects` are of each of the room type's categories, in one-hot order (pieces
+    /// of other categories are not counted).
+    pub fn category_counts(self, objects: &[super::Object]) -> Vec<usize> {
+        let mut counts = vec![0usize; self.categories().len()];
+        for i in objects.iter().filter_map(|o| self.category_index(o.category)) {
+            counts[i] += 1;
+        }
+        counts
+    }
+
     /// Maximum number of objects (token slots) a scene of this type holds.
     pub fn max_objects(self) -> usize {
         match self {

@@ -140,17 +140,14 @@ impl ConditionTape {
         let floor = PointTape::run(p, &net.floor, inp.floor, b);
         let free = PointTape::run(p, &net.free, inp.free, b);
         let (rooms, counts) = (inp.rooms.to_vec(), inp.counts.to_vec());
-        let mut global = Vec::new();
-        for (table, inputs) in [(net.room, &rooms), (net.counts, &counts)] {
-            if let Some(table) = table {
-                let rows = table.map(p, inputs, d);
-                if global.is_empty() {
-                    global = rows;
-                } else {
-                    global.iter_mut().zip(rows).for_each(|(g, r)| *g += r);
-                }
-            }
-        }
+        let global = [(net.room, &rooms), (net.counts, &counts)]
+            .into_iter()
+            .filter_map(|(table, inputs)| table.map(|t| t.map(p, inputs, d)))
+            .reduce(|mut sum, rows| {
+                sum.iter_mut().zip(rows).for_each(|(s, r)| *s += r);
+                sum
+            })
+            .unwrap_or_default();
 
         // Rows: objects, then visible contact boxes.
         let objects = b * slots;
