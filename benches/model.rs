@@ -16,7 +16,7 @@ use common::fastest;
 use shade_sim::data::Rng;
 use shade_sim::generator::{
     AdamW, AdamWConfig, Bounds, CondTensors, Denoiser, Engine, FastDenoiser, Features, Gradients, Guidance,
-    GuidanceConfig, HostBatch, ModelConfig, NoisyBatch, ParamLayout, Params, Schedule, SpatialGuidance,
+    GuidanceConfig, HostBatch, ModelConfig, NoisyBatch, ParamLayout, Params, Projection, Schedule, SpatialGuidance,
     empty_projection_steps, sample, tokens,
 };
 use shade_sim::scene::RoomType;
@@ -90,7 +90,9 @@ fn sample_once(s: &Setup, rng: &mut Rng) {
     let cond = conditions(&s.cfg, SAMPLE_BATCH, rng);
     let seeds: Vec<u64> = (0..SAMPLE_BATCH as u64).collect();
     let projection = empty_projection_steps(&s.schedule);
-    black_box(sample(&s.shipped, &s.schedule, &s.visited, &cond, &seeds, projection, None).unwrap());
+    black_box(
+        sample(&s.shipped, &s.schedule, &s.visited, &cond, &seeds, &Projection::empty_slots(projection), None).unwrap(),
+    );
 }
 
 /// A random training batch like the reference's: random tokens and conditions, every weight 1.

@@ -2,8 +2,9 @@
 //! decoding into shade-scene/1 scenes that keep the input's floor plan and humans.
 
 use super::count_prior::contact_kinds;
+use super::count_projection::CountTargets;
 use super::dataset::HostBatch;
-use super::sampler::{Guidance, empty_projection_steps, sample};
+use super::sampler::{Guidance, Projection, empty_projection_steps, sample};
 use super::{Checkpoint, Features, GenError, Schedule, tokens};
 use crate::data::Rng;
 use crate::human::Conditions;
@@ -46,8 +47,9 @@ impl Generator {
         Generator { visited, ..self }
     }
 
-    /// The same generator without the sampler's empty-slot projection: the model's raw output, which
-    /// has 40–55 % more objects than the data ([`empty_projection_steps`]).
+    /// The same generator without the sampler's empty-slot projection (nor, with count conditioning,
+    /// its count projection): the model's raw output, which has 40–55 % more objects than the data
+    /// ([`empty_projection_steps`]).
     pub fn without_empty_projection(self) -> Generator {
         Generator { empty_projection: false, ..self }
     }
@@ -132,18 +134,29 @@ impl Generator {
         for chunk in jobs.chunks(MAX_BATCH) {
             let mut batch = HostBatch::default();
             let mut seeds = Vec::with_capacity(chunk.len());
+            let mut counts = Vec::with_capacity(chunk.len());
             for &(i, k) in chunk {
                 let item_seed = Self::item_seed(seed, i, k);
                 match self.drawn_counts(&inputs[i], &features[i].0, item_seed)? {
-                    Some(counts) => {
+                    Some(c) => {
                         let mut f = features[i].1.clone();
-                        f.set_counts(&counts);
+                        f.set_counts(&c);
                         batch.push_features(&f);
+                        counts.push(c);
                     }
                     None => batch.push_features(&features[i].1),
                 }
                 seeds.push(item_seed);
             }
+            // A count-conditioned model's projection also keeps its slots to the counts.
+            let projection = match self.empty_projection {
+                false => Projection::default(),
+                true => Projection {
+                    steps: empty_projection_steps(&self.schedule),
+                    counts: (counts.len() == chunk.len() && !counts.is_empty())
+                        .then(|| CountTargets { per_item: counts, bounds: meta.bounds.clone() }),
+                },
+            };
             let scenes: Vec<&Scene> = chunk.iter().map(|&(i, _)| &inputs[i]).collect();
             let mut guide = guidance(&scenes);
             let cond = batch.cond(&meta.model)?;
@@ -153,7 +166,7 @@ impl Generator {
                 &self.visited,
                 &cond,
                 &seeds,
-                if self.empty_projection { empty_projection_steps(&self.schedule) } else { 0 },
+                &projection,
                 guide.as_mut().map(|g| g.as_mut() as &mut dyn Guidance),
             )?;
             let per_item = meta.model.slots() * meta.model.token_dim();

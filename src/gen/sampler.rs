@@ -1,12 +1,14 @@
 //! DDPM ancestral sampling with the guidance hook: at every step the clean estimate x̂0 (from the
 //! predicted noise, clamped to [-1, 1]) may be replaced by a guided x̃0 before the posterior mean
 //! is formed (DESIGN.md, "Guidance at step t"). In the last steps, slots whose x̂0 reads "empty" get
-//! the zero attributes the training data has there ([`empty_projection_steps`]).
+//! the zero attributes the training data has there ([`empty_projection_steps`]), after a
+//! count-conditioned model's slots are matched to the counts asked for ([`super::count_projection`]).
 //!
 //! Noise comes from the crate's seeded generator, one stream per batch item, and the denoiser runs
 //! as [`FastDenoiser`] (conditions encoded once, no item's numbers depending on another's), so item i of a seed is the
 //! same whether it is sampled alone or in a batch.
 
+use super::count_projection::{CountTargets, match_counts};
 use super::model::CondTensors;
 use super::tokens::{CLASS_OFFSET, slot_class};
 use super::{Denoiser, FastDenoiser, GenError, Schedule, anchors};
@@ -23,18 +25,35 @@ pub trait Guidance {
     fn finish(&mut self, _item: usize, _scene: &mut crate::scene::Scene) {}
 }
 
+/// What the sampler's last steps project x̂0 onto.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Projection {
+    /// In steps t below this one the empty slots of x̂0 get zero attributes
+    /// ([`empty_projection_steps`] is the default; 0 samples the model's raw output).
+    pub steps: usize,
+    /// With count conditioning: in the same steps, x̂0's classes are first matched to each item's
+    /// pieces per category ([`match_counts`]). `None`: no count projection.
+    pub counts: Option<CountTargets>,
+}
+
+impl Projection {
+    /// The empty-slot projection alone, in the steps below `steps`.
+    pub fn empty_slots(steps: usize) -> Projection {
+        Projection { steps, counts: None }
+    }
+}
+
 /// Samples a batch; `seeds[i]` drives item i, visiting the steps `visited` (ascending, from
-/// [`Schedule::respaced`]; all T for DDPM's chain) from the last down. In steps t < `projection_steps` the empty slots of x̂0
-/// get zero attributes ([`empty_projection_steps`] is the default; 0 samples the model's raw
-/// output). Returns the tokens in world form (B × slots × token_dim); the diffusion itself runs in
-/// the model's frame ([`anchors`]), and the guidance sees world tokens.
+/// [`Schedule::respaced`]; all T for DDPM's chain) from the last down, projecting x̂0 in the last
+/// steps as `projection` says. Returns the tokens in world form (B × slots × token_dim); the
+/// diffusion itself runs in the model's frame ([`anchors`]), and the guidance sees world tokens.
 pub fn sample(
     model: &Denoiser,
     schedule: &Schedule,
     visited: &[usize],
     cond: &CondTensors,
     seeds: &[u64],
-    projection_steps: usize,
+    projection: &Projection,
     mut guidance: Option<&mut dyn Guidance>,
 ) -> Result<Vec<f32>, GenError> {
     let cfg = model.config();
@@ -71,7 +90,24 @@ pub fn sample(
         let x0: Vec<f32> =
             out.iter().zip(&noisy).map(|(&o, &x)| cfg.prediction.clean_estimate(o, x, ab).clamp(-1.0, 1.0)).collect();
         let x0 = Tensor::from_vec(x0, shape, &Device::Cpu)?;
-        let x0 = if t < projection_steps { zero_empty_attributes(&x0, cfg)? } else { x0 };
+        let x0 = if t < projection.steps {
+            if let Some(targets) = &projection.counts {
+                let world = frame(&x0, false)?.flatten_all()?.to_vec1::<f32>()?;
+                let mut v = x0.flatten_all()?.to_vec1::<f32>()?;
+                for (item, want) in targets.per_item.iter().enumerate() {
+                    let k = mask.len() / b;
+                    let boxes = mask[item * k..(item + 1) * k].iter().filter(|&&m| m > 0.5);
+                    let anchored = cfg.anchored_slots(boxes.count());
+                    let r = item * per_item..(item + 1) * per_item;
+                    match_counts(&world[r.clone()], &mut v[r], want, anchored, &targets.bounds, cfg);
+                }
+                zero_empty_attributes(&Tensor::from_vec(v, shape, &Device::Cpu)?, cfg)?
+            } else {
+                zero_empty_attributes(&x0, cfg)?
+            }
+        } else {
+            x0
+        };
         let x0 = match guidance.as_deref_mut() {
             Some(g) => frame(&g.guide(&frame(&x0, false)?, t)?, true)?,
             None => x0,
