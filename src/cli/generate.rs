@@ -43,8 +43,9 @@ pub struct GenerateArgs {
     /// Sampling rounds for --require-clean.
     #[arg(long, default_value_t = 8)]
     pub attempts: usize,
-    /// Sample without the empty-slot projection (the model's raw output, 40–55 % more objects than
-    /// the data; for comparisons, docs/RESULTS.md).
+    /// Sample without the empty-slot projection, nor a count-conditioned model's count projection
+    /// (the model's raw output, 40–55 % more objects than the data; for comparisons,
+    /// docs/RESULTS.md).
     #[arg(long)]
     pub no_empty_projection: bool,
     /// Sample with this many model calls instead of the model's T (its chain respaced to N evenly
@@ -168,6 +169,18 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
             })
         })
         .collect::<anyhow::Result<_>>()?;
+    // Counting an input's pieces needs pieces: an empty room would be asked to hold nothing.
+    if args.input_counts {
+        for (file, input) in files.iter().zip(&inputs) {
+            let pieces: usize = input.room_type.category_counts(&input.objects).iter().sum();
+            anyhow::ensure!(
+                pieces > 0,
+                "{}: --input-counts: the input has no {} pieces to count (list the room's pieces in its objects)",
+                file.display(),
+                input.room_type
+            );
+        }
+    }
     // People inside each other: no layout mends it (`human::people_meeting`); said before sampling.
     let meetings: Vec<Vec<Meeting>> = inputs.par_iter().map(|s| people_meeting(s, opts.check.tolerance)).collect();
     for (file, found) in files.iter().zip(&meetings) {

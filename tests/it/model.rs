@@ -281,6 +281,27 @@ fn a_count_conditioned_model_keeps_its_training_rooms_make_ups_and_draws_from_th
     };
     let (projected, unprojected) = (pieces_off(out.join("furnished_0.json")), pieces_off(raw.join("furnished_0.json")));
     assert!(projected < unprojected, "{projected} pieces off with the projection, {unprojected} without");
+    // An input without pieces has nothing to count: refused, nothing written.
+    let bare_file = dir.path().join("bare.json");
+    Scene { objects: Vec::new(), ..furnished.clone() }.save(&bare_file).unwrap();
+    let bare_out = dir.path().join("bare");
+    let o = shade_sim(&[
+        "generate",
+        "--input",
+        bare_file.to_str().unwrap(),
+        "--out",
+        bare_out.to_str().unwrap(),
+        "--model",
+        m,
+        "--input-counts",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("bare.json: --input-counts: the input has no bedroom pieces to count"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!bare_out.exists());
     // The shipped models have no count conditioning: the flag is refused, not ignored.
     let o = shade_sim(&[
         "generate",
