@@ -91,20 +91,11 @@ pub fn sample(
             out.iter().zip(&noisy).map(|(&o, &x)| cfg.prediction.clean_estimate(o, x, ab).clamp(-1.0, 1.0)).collect();
         let x0 = Tensor::from_vec(x0, shape, &Device::Cpu)?;
         let x0 = if t < projection.steps {
-            if let Some(targets) = &projection.counts {
-                let world = frame(&x0, false)?.flatten_all()?.to_vec1::<f32>()?;
-                let mut v = x0.flatten_all()?.to_vec1::<f32>()?;
-                for (item, want) in targets.per_item.iter().enumerate() {
-                    let k = mask.len() / b;
-                    let boxes = mask[item * k..(item + 1) * k].iter().filter(|&&m| m > 0.5);
-                    let anchored = cfg.anchored_slots(boxes.count());
-                    let r = item * per_item..(item + 1) * per_item;
-                    match_counts(&world[r.clone()], &mut v[r], want, anchored, &targets.bounds, cfg);
-                }
-                zero_empty_attributes(&Tensor::from_vec(v, shape, &Device::Cpu)?, cfg)?
-            } else {
-                zero_empty_attributes(&x0, cfg)?
-            }
+            let x0 = match &projection.counts {
+                Some(targets) => match_batch_counts(&x0, &frame(&x0, false)?, targets, &mask, cfg)?,
+                None => x0,
+            };
+            zero_empty_attributes(&x0, cfg)?
         } else {
             x0
         };
@@ -134,6 +125,27 @@ pub fn sample(
 /// because what decides whether a slot is still open is how much noise is left.
 pub fn empty_projection_steps(schedule: &Schedule) -> usize {
     schedule.at_linear_noise(schedule.steps() * 2 / 5)
+}
+
+/// [`match_counts`] for every item of a batch: `x0` in the model's frame, `world` the same in world
+/// form, `mask` the contact mask (B × K) that says how many slots are anchored.
+fn match_batch_counts(
+    x0: &Tensor,
+    world: &Tensor,
+    targets: &CountTargets,
+    mask: &[f32],
+    cfg: &super::ModelConfig,
+) -> Result<Tensor, GenError> {
+    let (shape, per_item) = (x0.shape().clone(), cfg.slots() * cfg.token_dim());
+    let world = world.flatten_all()?.to_vec1::<f32>()?;
+    let mut v = x0.flatten_all()?.to_vec1::<f32>()?;
+    let k = mask.len() / targets.per_item.len().max(1);
+    for (item, want) in targets.per_item.iter().enumerate() {
+        let anchored = cfg.anchored_slots(mask[item * k..(item + 1) * k].iter().filter(|&&m| m > 0.5).count());
+        let r = item * per_item..(item + 1) * per_item;
+        match_counts(&world[r.clone()], &mut v[r], want, anchored, &targets.bounds, cfg);
+    }
+    Ok(Tensor::from_vec(v, shape, &Device::Cpu)?)
 }
 
 /// Sets the continuous attributes of every slot whose largest class is "empty" to 0, as in the
