@@ -153,7 +153,9 @@ impl Generator {
                 false => Projection::default(),
                 true => Projection {
                     steps: empty_projection_steps(&self.schedule),
-                    counts: (counts.len() == chunk.len() && !counts.is_empty())
+                    counts: meta
+                        .model
+                        .count_condition
                         .then(|| CountTargets { per_item: counts, bounds: meta.bounds.clone() }),
                 },
             };

@@ -253,27 +253,21 @@ fn a_count_conditioned_model_keeps_its_training_rooms_make_ups_and_draws_from_th
     let (f, m) = (furnished.clone(), model.to_str().unwrap());
     let input_file = dir.path().join("furnished.json");
     f.save(&input_file).unwrap();
+    // `generate --model M --input-counts` on `input` into `out`, with `more` flags.
+    let with_counts = |input: &Path, out: &Path, more: &[&str]| {
+        let args = ["generate", "--input", input.to_str().unwrap(), "--out", out.to_str().unwrap(), "--model", m];
+        shade_sim(&[&args[..], &["--input-counts"], more].concat())
+    };
     let out = dir.path().join("own");
-    let o = shade_sim(&[
-        "-q",
-        "generate",
-        "--input",
-        input_file.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--model",
-        m,
-        "--input-counts",
-        "--no-repair",
-        "--guidance",
-        "none",
-    ]);
+    let o = with_counts(&input_file, &out, &["-q", "--no-repair", "--guidance", "none"]);
     assert!(o.status.success(), "{}", stderr(&o));
     // The count projection brings even a two-step model's make-up nearer the pieces asked for.
     let raw = dir.path().join("raw");
-    let args = ["-q", "generate", "--input", input_file.to_str().unwrap(), "--model", m, "--input-counts"];
-    let more = ["--no-repair", "--guidance", "none", "--no-empty-projection", "--out", raw.to_str().unwrap()];
-    assert!(shade_sim(&[&args[..], &more[..]].concat()).status.success());
+    assert!(
+        with_counts(&input_file, &raw, &["-q", "--no-repair", "--guidance", "none", "--no-empty-projection"])
+            .status
+            .success()
+    );
     let pieces_off = |file: PathBuf| {
         let made = Scene::load(file).unwrap();
         let counts = made.room_type.category_counts(&made.objects);
@@ -285,16 +279,7 @@ fn a_count_conditioned_model_keeps_its_training_rooms_make_ups_and_draws_from_th
     let bare_file = dir.path().join("bare.json");
     Scene { objects: Vec::new(), ..furnished.clone() }.save(&bare_file).unwrap();
     let bare_out = dir.path().join("bare");
-    let o = shade_sim(&[
-        "generate",
-        "--input",
-        bare_file.to_str().unwrap(),
-        "--out",
-        bare_out.to_str().unwrap(),
-        "--model",
-        m,
-        "--input-counts",
-    ]);
+    let o = with_counts(&bare_file, &bare_out, &[]);
     assert_eq!(o.status.code(), Some(2));
     assert!(
         stderr(&o).contains("bare.json: --input-counts: the input has no bedroom pieces to count"),
