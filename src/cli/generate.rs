@@ -43,11 +43,14 @@ pub struct GenerateArgs {
     /// Sampling rounds for --require-clean.
     #[arg(long, default_value_t = 8)]
     pub attempts: usize,
-    /// Sample without the empty-slot projection, nor a count-conditioned model's count projection
-    /// (the model's raw output, 40–55 % more objects than the data; for comparisons,
-    /// docs/RESULTS.md).
+    /// Sample without the empty-slot projection, nor the count projection (the model's raw
+    /// output, 40–55 % more objects than the data; for comparisons, docs/RESULTS.md).
     #[arg(long)]
     pub no_empty_projection: bool,
+    /// Keep a category count no training room has (one dining chair, three nightstands) instead
+    /// of moving it to the nearest count the data has (for comparisons, docs/RESULTS.md).
+    #[arg(long)]
+    pub unseen_counts: bool,
     /// Sample with this many model calls instead of the model's T (its chain respaced to N evenly
     /// spaced steps; faster, and a v model keeps its precision; default: T).
     #[arg(long)]
@@ -158,6 +161,7 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
         .map(|(room, members)| -> anyhow::Result<_> {
             let generator = load_model(custom.as_ref(), *room, &files[members[0]])?;
             let generator = if args.no_empty_projection { generator.without_empty_projection() } else { generator };
+            let generator = if args.unseen_counts { generator.without_seen_counts() } else { generator };
             anyhow::ensure!(
                 !args.input_counts || generator.checkpoint.meta.model.count_condition,
                 "--input-counts: the {room} model has no count conditioning (train one with --count-condition)"

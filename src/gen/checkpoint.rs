@@ -4,7 +4,7 @@
 //!
 //! Every file is written to a temporary name and renamed, so a stop never leaves half a checkpoint.
 
-use super::{Bounds, CountPrior, Denoiser, GenError, ModelConfig, Params};
+use super::{Bounds, CountPrior, Denoiser, GenError, ModelConfig, Params, SeenCounts};
 use crate::scene::Category;
 use crate::scene::write_atomic;
 use candle_core::{Device, Tensor};
@@ -72,6 +72,10 @@ pub struct CheckpointMeta {
     /// With count conditioning: the training rooms' make-ups that sampling draws counts from.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub count_prior: Option<CountPrior>,
+    /// The counts per category the training rooms have, which sampling keeps a layout's counts
+    /// among; absent in folders written before it existed, which sample without it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seen_counts: Option<SeenCounts>,
 }
 
 /// A loaded model: metadata and the denoiser with its EMA weights.
@@ -149,6 +153,10 @@ pub fn parse_meta(text: &str, origin: &Path) -> Result<CheckpointMeta, GenError>
         return Err(GenError::checkpoint(origin, "bounds are not finite and ordered".to_string()));
     }
     if let Some(problem) = count_prior_problem(&meta) {
+        return Err(GenError::checkpoint(origin, problem));
+    }
+    if let Some(problem) = meta.seen_counts.as_ref().and_then(|s| s.problem(&meta.model.rooms(), meta.categories.len()))
+    {
         return Err(GenError::checkpoint(origin, problem));
     }
     Ok(meta)

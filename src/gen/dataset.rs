@@ -24,6 +24,9 @@ pub struct Example {
     pub features: Features,
     /// The room as a count prior keeps it (its counts are the tokens' pieces per category).
     pub make_up: PriorRoom,
+    /// The scene's pieces per category (the room type's order), as [`super::SeenCounts`] counts
+    /// them: a piece several people share is one piece.
+    pub pieces: Vec<u8>,
 }
 
 impl Example {
@@ -44,7 +47,8 @@ impl Example {
         }
         let area = scene.floor_plan.polygon().area();
         let make_up = PriorRoom::new(scene.room_type, contact_kinds(&cond), area, counts);
-        Example { tokens, weights, features, make_up }
+        let pieces = scene.room_type.category_counts(&scene.objects).into_iter().map(|n| n.min(255) as u8).collect();
+        Example { tokens, weights, features, make_up, pieces }
     }
 
     /// This example under the symmetry `g`.

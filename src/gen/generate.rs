@@ -2,7 +2,7 @@
 //! decoding into shade-scene/1 scenes that keep the input's floor plan and humans.
 
 use super::count_prior::contact_kinds;
-use super::count_projection::CountTargets;
+use super::count_projection::{CountRule, CountTargets};
 use super::dataset::HostBatch;
 use super::sampler::{Guidance, Projection, empty_projection_steps, sample};
 use super::{Checkpoint, Features, GenError, Schedule, tokens};
@@ -29,6 +29,7 @@ pub struct Generator {
     visited: Vec<usize>,
     empty_projection: bool,
     input_counts: bool,
+    seen_counts: bool,
 }
 
 impl Generator {
@@ -36,7 +37,7 @@ impl Generator {
     pub fn new(checkpoint: Checkpoint) -> Generator {
         let schedule = Schedule::of(&checkpoint.meta.model);
         let visited = schedule.respaced(schedule.steps());
-        Generator { checkpoint, schedule, visited, empty_projection: true, input_counts: false }
+        Generator { checkpoint, schedule, visited, empty_projection: true, input_counts: false, seen_counts: true }
     }
 
     /// The same generator sampling with `n` model calls instead of T: the chain respaced to `n`
@@ -52,6 +53,13 @@ impl Generator {
     /// ([`empty_projection_steps`]).
     pub fn without_empty_projection(self) -> Generator {
         Generator { empty_projection: false, ..self }
+    }
+
+    /// The same generator without the projection onto the counts the training data has (for a
+    /// model without count conditioning; [`super::SeenCounts`]): each category's count is the
+    /// model's own, even one no training room has.
+    pub fn without_seen_counts(self) -> Generator {
+        Generator { seen_counts: false, ..self }
     }
 
     /// The same generator conditioning a count-conditioned model on each input's own pieces per
@@ -134,7 +142,7 @@ impl Generator {
         for chunk in jobs.chunks(MAX_BATCH) {
             let mut batch = HostBatch::default();
             let mut seeds = Vec::with_capacity(chunk.len());
-            let mut counts = Vec::with_capacity(chunk.len());
+            let mut rules = Vec::with_capacity(chunk.len());
             for &(i, k) in chunk {
                 let item_seed = Self::item_seed(seed, i, k);
                 match self.drawn_counts(&inputs[i], &features[i].0, item_seed)? {
@@ -142,21 +150,23 @@ impl Generator {
                         let mut f = features[i].1.clone();
                         f.set_counts(&c);
                         batch.push_features(&f);
-                        counts.push(c);
+                        rules.push(Some(CountRule::Asked(c)));
                     }
-                    None => batch.push_features(&features[i].1),
+                    None => {
+                        batch.push_features(&features[i].1);
+                        let seen = meta.seen_counts.as_ref().filter(|_| self.seen_counts);
+                        rules.push(seen.and_then(|s| s.of_room(inputs[i].room_type)).cloned().map(CountRule::Seen));
+                    }
                 }
                 seeds.push(item_seed);
             }
-            // A count-conditioned model's projection also keeps its slots to the counts.
+            // The projection also keeps the slots to the counts asked for, or to counts the data has.
+            let per_item: Option<Vec<CountRule>> = rules.into_iter().collect();
             let projection = match self.empty_projection {
                 false => Projection::default(),
                 true => Projection {
                     steps: empty_projection_steps(&self.schedule),
-                    counts: meta
-                        .model
-                        .count_condition
-                        .then(|| CountTargets { per_item: counts, bounds: meta.bounds.clone() }),
+                    counts: per_item.map(|per_item| CountTargets { per_item, bounds: meta.bounds.clone() }),
                 },
             };
             let scenes: Vec<&Scene> = chunk.iter().map(|&(i, _)| &inputs[i]).collect();

@@ -1,8 +1,8 @@
 //! DDPM ancestral sampling with the guidance hook: at every step the clean estimate x̂0 (from the
 //! predicted noise, clamped to [-1, 1]) may be replaced by a guided x̃0 before the posterior mean
 //! is formed (DESIGN.md, "Guidance at step t"). In the last steps, slots whose x̂0 reads "empty" get
-//! the zero attributes the training data has there ([`empty_projection_steps`]), after a
-//! count-conditioned model's slots are matched to the counts asked for ([`super::count_projection`]).
+//! the zero attributes the training data has there ([`empty_projection_steps`]), after the slots'
+//! classes are matched to the counts the item must hold ([`super::count_projection`]).
 //!
 //! Noise comes from the crate's seeded generator, one stream per batch item, and the denoiser runs
 //! as [`FastDenoiser`] (conditions encoded once, no item's numbers depending on another's), so item i of a seed is the
@@ -31,8 +31,8 @@ pub struct Projection {
     /// In steps t below this one the empty slots of x̂0 get zero attributes
     /// ([`empty_projection_steps`] is the default; 0 samples the model's raw output).
     pub steps: usize,
-    /// With count conditioning: in the same steps, x̂0's classes are first matched to each item's
-    /// pieces per category ([`match_counts`]). `None`: no count projection.
+    /// In the same steps, x̂0's classes are first matched to each item's pieces per category as
+    /// its rule says ([`match_counts`]). `None`: no count projection.
     pub counts: Option<CountTargets>,
 }
 
@@ -140,10 +140,10 @@ fn match_batch_counts(
     let world = world.flatten_all()?.to_vec1::<f32>()?;
     let mut v = x0.flatten_all()?.to_vec1::<f32>()?;
     let k = mask.len() / targets.per_item.len().max(1);
-    for (item, want) in targets.per_item.iter().enumerate() {
+    for (item, rule) in targets.per_item.iter().enumerate() {
         let anchored = cfg.anchored_slots(mask[item * k..(item + 1) * k].iter().filter(|&&m| m > 0.5).count());
         let r = item * per_item..(item + 1) * per_item;
-        match_counts(&world[r.clone()], &mut v[r], want, anchored, &targets.bounds, cfg);
+        match_counts(&world[r.clone()], &mut v[r], rule, anchored, &targets.bounds, cfg);
     }
     Ok(Tensor::from_vec(v, shape, &Device::Cpu)?)
 }

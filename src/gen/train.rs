@@ -16,8 +16,8 @@ use super::checkpoint::{
 use super::dataset::{Example, HostBatch, NoisyBatch, balance_categories, load_split};
 use super::engine::{Engine, Gradients};
 use super::flat::ParamLayout;
-use super::{Bounds, CountPrior, Denoiser, Dihedral, GenError, ModelConfig, Params, Schedule};
-use crate::data::{Rng, read_stats};
+use super::{Bounds, CountPrior, Denoiser, Dihedral, GenError, ModelConfig, Params, Schedule, SeenCounts};
+use crate::data::{DatasetStats, Rng, read_stats};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -166,16 +166,12 @@ pub trait TrainObserver {
 
 impl TrainObserver for () {}
 
-/// Trains (or resumes) a model as `opts` says, until done or `stop` is set.
-pub fn train(
-    opts: &TrainOptions,
-    stop: &AtomicBool,
-    observer: &mut dyn TrainObserver,
-) -> Result<TrainOutcome, GenError> {
+/// The training rooms `opts` names, encoded for its model (its data's train split, then every
+/// split of each extra dataset, then each joint dataset's train split, each in file-name order),
+/// with the bounds they are encoded in (from the data's train split), the data's stats and the
+/// hash that identifies them (`stats.json`, with the extra and joint ones when there are any).
+pub fn training_rooms(opts: &TrainOptions) -> Result<TrainingRooms, GenError> {
     let cfg = &opts.model;
-    if let Some(problem) = cfg.problem() {
-        return Err(GenError::checkpoint(&opts.out, format!("bad model config: {problem}")));
-    }
     let stats = read_stats(&opts.data)?;
     let stats_bytes =
         std::fs::read(opts.data.join("stats.json")).map_err(|e| GenError::io(opts.data.join("stats.json"), e))?;
@@ -209,6 +205,42 @@ pub fn train(
     }
     let more_data = !opts.extra_data.is_empty() || !opts.joint_data.is_empty();
     let data_hash = if more_data { fnv1a_hex(&hashed) } else { data_hash };
+    Ok(TrainingRooms { examples: train_set, bounds, stats, data_hash })
+}
+
+/// What [`training_rooms`] loads.
+#[derive(Debug, Clone)]
+pub struct TrainingRooms {
+    /// The encoded rooms, in training order.
+    pub examples: Vec<Example>,
+    /// The token bounds they are encoded in.
+    pub bounds: Bounds,
+    /// The data's `stats.json`.
+    pub stats: DatasetStats,
+    /// FNV-1a hash of the stats files.
+    pub data_hash: String,
+}
+
+impl TrainingRooms {
+    /// The counts per category these rooms have, as a model trained on them records them.
+    pub fn seen_counts(&self) -> SeenCounts {
+        SeenCounts::of(self.examples.iter().map(|e| (e.make_up.0, e.pieces.as_slice())))
+    }
+}
+
+/// Trains (or resumes) a model as `opts` says, until done or `stop` is set.
+pub fn train(
+    opts: &TrainOptions,
+    stop: &AtomicBool,
+    observer: &mut dyn TrainObserver,
+) -> Result<TrainOutcome, GenError> {
+    let cfg = &opts.model;
+    if let Some(problem) = cfg.problem() {
+        return Err(GenError::checkpoint(&opts.out, format!("bad model config: {problem}")));
+    }
+    let rooms = training_rooms(opts)?;
+    let seen_counts = rooms.seen_counts();
+    let TrainingRooms { examples: mut train_set, bounds, stats, data_hash } = rooms;
     balance_categories(&mut train_set, opts.category_balance, cfg);
     let count_prior =
         cfg.count_condition.then(|| CountPrior { rooms: train_set.iter().map(|e| e.make_up.clone()).collect() });
@@ -300,6 +332,7 @@ pub fn train(
                     training: info(step, seconds, val_loss),
                     weights_hash: None,
                     count_prior: count_prior.clone(),
+                    seen_counts: Some(seen_counts.clone()),
                 };
                 let state = StateMeta { step, adam_steps: adam.steps, seconds, val_loss, data_hash: data_hash.clone() };
                 save(&opts.out, &meta, &state, &layout, &params, &adam, &ema)?;

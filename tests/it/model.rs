@@ -603,3 +603,60 @@ fn without_the_empty_slot_projection_the_shipped_model_samples_more_objects() {
     let (projected, raw) = (count(None), count(Some("--no-empty-projection")));
     assert!(raw as f64 > 1.1 * projected as f64, "{raw} vs {projected}");
 }
+
+#[test]
+fn a_model_records_the_counts_its_training_rooms_have_and_samples_keep_to_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dataset(dir.path(), RoomType::Bedroom);
+    let model = dir.path().join("model");
+    let mut o = options(&data, &model);
+    o.steps = 2;
+    train(&o, &AtomicBool::new(false), &mut ()).unwrap();
+    let ckpt = Checkpoint::load(&model).unwrap();
+    let seen = ckpt.meta.seen_counts.clone().expect("seen counts");
+    // Counted by hand from the train split: per category, each count and the rooms that have it.
+    let mut want: Vec<std::collections::BTreeMap<u32, u32>> = vec![Default::default(); ckpt.meta.categories.len()];
+    for f in std::fs::read_dir(data.join("train")).unwrap() {
+        let scene = Scene::load(f.unwrap().path()).unwrap();
+        for (c, &category) in ckpt.meta.categories.iter().enumerate() {
+            let n = scene.objects.iter().filter(|o| o.category == category).count() as u32;
+            *want[c].entry(n).or_default() += 1;
+        }
+    }
+    let room = seen.of_room(RoomType::Bedroom).expect("the bedroom's counts");
+    let got: Vec<std::collections::BTreeMap<u32, u32>> =
+        room.categories.iter().map(|pairs| pairs.iter().map(|p| (p[0], p[1])).collect()).collect();
+    assert_eq!(got, want);
+
+    // Were every training room to have one wardrobe, an empty room (no one in it, so no piece is
+    // held for anyone) would get one in every sample; this two-step model's own samples are empty.
+    let wardrobe = ckpt.meta.categories.iter().position(|c| c.name() == "wardrobe").unwrap();
+    let mut one_each = ckpt.clone();
+    let room = &mut one_each.meta.seen_counts.as_mut().unwrap().rooms[0];
+    room.categories[wardrobe] = vec![[1, 12]];
+    let mut input = Scene::load(root().join("scenes/examples/bedroom_rect.json")).unwrap();
+    input.humans.clear();
+    input.objects.clear();
+    let wardrobes = |generator: Generator| -> Vec<usize> {
+        let layouts = generator.generate(std::slice::from_ref(&input), 6, 5).unwrap().remove(0);
+        layouts.iter().map(|s| s.objects.iter().filter(|o| o.category.name() == "wardrobe").count()).collect()
+    };
+    assert_eq!(wardrobes(Generator::new(one_each.clone())), [1; 6]);
+    assert_eq!(wardrobes(Generator::new(one_each).without_seen_counts()), [0; 6]);
+    assert_eq!(wardrobes(Generator::new(ckpt.clone())), [0; 6], "none is a count the data has");
+
+    // Seen counts of another width, or without a room type the model serves, are a bad checkpoint.
+    let config = model.join("config.json");
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&config).unwrap()).unwrap();
+    let bad = [
+        (serde_json::json!({ "rooms": [{ "room": "bedroom", "categories": [[[0, 1]]] }] }), "categories, not"),
+        (serde_json::json!({ "rooms": [] }), "seen_counts has no bedroom room"),
+    ];
+    for (value, message) in bad {
+        let mut json = json.clone();
+        json["seen_counts"] = value;
+        std::fs::write(&config, serde_json::to_string_pretty(&json).unwrap()).unwrap();
+        let error = Checkpoint::load(&model).unwrap_err().to_string();
+        assert!(error.contains("config.json") && error.contains(message), "{message}: {error}");
+    }
+}

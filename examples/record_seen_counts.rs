@@ -1,0 +1,43 @@
+//! Records in a model folder trained before `seen_counts` existed the counts per category of its
+//! training rooms, as `train` now records them (`CheckpointMeta::seen_counts`), so that sampling
+//! keeps its layouts to counts the data has. The data must be the model's own: as many training
+//! rooms as `config.json` recorded at training, or nothing is written. (Not its hash: that covers
+//! the datasets' `stats.json`, whose commands name this machine's paths and flags, and data made
+//! again elsewhere, room for room the same, hashes otherwise.)
+//!
+//! Run: `cargo run --release --example record_seen_counts -- MODEL_DIR DATA [--extra-data DIR]…
+//! [--joint-data DIR]…` (the folders the model's `train` command named).
+
+use anyhow::{Context, bail};
+use shade_sim::generator::checkpoint::{CONFIG_FILE, parse_meta, write_json};
+use shade_sim::generator::{TrainOptions, training_rooms};
+use std::path::{Path, PathBuf};
+
+fn main() -> anyhow::Result<()> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let usage = "usage: record_seen_counts MODEL_DIR DATA [--extra-data DIR]… [--joint-data DIR]…";
+    let [model, data, rest @ ..] = &args[..] else { bail!(usage) };
+    let config = Path::new(model).join(CONFIG_FILE);
+    let text = std::fs::read_to_string(&config).with_context(|| config.display().to_string())?;
+    let mut meta = parse_meta(&text, &config)?;
+    let mut opts = TrainOptions::new(PathBuf::from(data), PathBuf::from(model), meta.model.clone());
+    for pair in rest.chunks(2) {
+        match pair {
+            [flag, dir] if flag == "--extra-data" => opts.extra_data.push(PathBuf::from(dir)),
+            [flag, dir] if flag == "--joint-data" => opts.joint_data.push(PathBuf::from(dir)),
+            _ => bail!(usage),
+        }
+    }
+    let rooms = training_rooms(&opts)?;
+    if rooms.examples.len() != meta.training.train_scenes {
+        bail!(
+            "{data}: {} training rooms, but the model was trained on {}",
+            rooms.examples.len(),
+            meta.training.train_scenes
+        );
+    }
+    meta.seen_counts = Some(rooms.seen_counts());
+    write_json(&meta, &config)?;
+    println!("{}: seen counts of {} training rooms recorded", config.display(), rooms.examples.len());
+    Ok(())
+}
