@@ -50,10 +50,10 @@ pub struct CountTargets {
 }
 
 /// Sets the classes of one item's x̂0 so that it decodes to the pieces per category `rule` wants,
-/// as far as its free slots allow. `world` is the item's x̂0 in world form (slots × token_dim) and decides
-/// which slots hold which pieces; `tokens` is the same estimate in the model's frame, whose class
-/// features are changed (a slot's classes become ±1, as in the training data); `anchored` is the
-/// number of anchored slots.
+/// as far as its free slots allow. `world` is the item's x̂0 in world form (slots × token_dim)
+/// and decides which slots hold which pieces; `tokens` is the same estimate in the model's frame,
+/// whose class features are changed (a slot's classes become ±1, as in the training data);
+/// `anchored` is the number of anchored slots.
 pub fn match_counts(
     world: &[f32],
     tokens: &mut [f32],
@@ -208,7 +208,7 @@ mod tests {
     }
 
     #[test]
-    fn under_the_seen_rule_a_lone_chair_serving_a_person_gets_a_second_and_a_third_table_goes() {
+    fn under_the_seen_rule_a_lone_chair_serving_a_person_gets_a_second_and_a_second_table_goes() {
         let (cfg, bounds) = setup();
         let (chair, table, empty) = (class_of("dining_chair", &cfg), class_of("dining_table", &cfg), cfg.classes() - 1);
         // The data: 0, 2 or 4 chairs and one table, in every room.
