@@ -660,3 +660,34 @@ fn a_model_records_the_counts_its_training_rooms_have_and_samples_keep_to_them()
         assert!(error.contains("config.json") && error.contains(message), "{message}: {error}");
     }
 }
+
+#[test]
+fn the_shipped_bedroom_model_keeps_to_the_nightstand_counts_its_data_has() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = root().join("scenes/examples/bedroom_rect.json");
+    let seen = Checkpoint::load(&root().join("models/bedroom")).unwrap().meta;
+    let room = seen.seen_counts.as_ref().and_then(|s| s.of_room(RoomType::Bedroom)).expect("seen counts").clone();
+    // Every category count of eight unguided samples that no training room has, as (sample,
+    // category, count).
+    let unseen = |flag: Option<&str>| {
+        let out = dir.path().join(flag.unwrap_or("default"));
+        let mut args = vec!["-q", "generate", "--input", input.to_str().unwrap(), "--out", out.to_str().unwrap()];
+        args.extend(["--samples", "8", "--guidance", "none", "--no-repair"]);
+        args.extend(flag);
+        let o = shade_sim(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let mut found = Vec::new();
+        for k in 0..8 {
+            let scene = Scene::load(out.join(format!("bedroom_rect_{k}.json"))).unwrap();
+            for (c, n) in scene.room_type.category_counts(&scene.objects).into_iter().enumerate() {
+                if !room.categories[c].iter().any(|p| p[0] as usize == n) {
+                    found.push((k, seen.categories[c].name().to_string(), n));
+                }
+            }
+        }
+        found
+    };
+    assert_eq!(unseen(None), []);
+    // Without the rule, sample 3 has three nightstands (its data: 0, 1 or 2).
+    assert_eq!(unseen(Some("--unseen-counts")), [(3, "nightstand".to_string(), 3)]);
+}
