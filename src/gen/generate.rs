@@ -48,9 +48,9 @@ impl Generator {
         Generator { visited, ..self }
     }
 
-    /// The same generator without the sampler's empty-slot projection (nor, with count conditioning,
-    /// its count projection): the model's raw output, which has 40–55 % more objects than the data
-    /// ([`empty_projection_steps`]).
+    /// The same generator without the sampler's empty-slot projection, nor its count projection
+    /// (counts asked for or counts the data has): the model's raw output, which has 40–55 % more
+    /// objects than the data ([`empty_projection_steps`]).
     pub fn without_empty_projection(self) -> Generator {
         Generator { empty_projection: false, ..self }
     }
