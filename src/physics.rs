@@ -44,6 +44,22 @@ pub trait Physics: Send + Sync {
     /// For every object the replayed bodies push on deeper than `tolerance` (m): the direction
     /// away from them scaled by the deepest contact, in object order.
     fn pushes(&self, scene: &Scene, tolerance: f64) -> Vec<(usize, DVec2)>;
+
+    /// How object `object` of `scene` meets the people ([`PieceFit`]): how far their bones enter
+    /// its parts beyond `tolerance` (m), and who lacks support in the whole scene.
+    fn piece_fit(&self, scene: &Scene, object: usize, tolerance: f64) -> PieceFit;
+}
+
+/// How one piece meets the people of its scene.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct PieceFit {
+    /// The sum over every human, frame and bone of how far the bone enters the piece's parts
+    /// beyond the tolerance asked for (m; the deepest part per bone and frame, the check's exact
+    /// capsule depths).
+    pub depth: f64,
+    /// The people (indices) the check finds without support in the scene: a sitter, sleeper or
+    /// toucher further than 5 cm from any piece, or inside the one under them.
+    pub unsupported: Vec<usize>,
 }
 
 /// Penetrations shallower than this are not pushed or repaired (m), as in the check.
@@ -52,7 +68,7 @@ pub const PHYS_TOLERANCE: f64 = 0.02;
 /// Judges for tests.
 #[cfg(test)]
 pub(crate) mod testing {
-    use super::{EngineContact, Physics};
+    use super::{EngineContact, Physics, PieceFit};
     use crate::scene::Scene;
     use glam::DVec2;
     use std::sync::atomic::{AtomicUsize, Ordering};
@@ -101,6 +117,10 @@ pub(crate) mod testing {
         fn pushes(&self, _: &Scene, _: f64) -> Vec<(usize, DVec2)> {
             Vec::new()
         }
+
+        fn piece_fit(&self, _: &Scene, _: usize, _: f64) -> PieceFit {
+            PieceFit::default()
+        }
     }
 
     impl Physics for FailFirst {
@@ -114,6 +134,10 @@ pub(crate) mod testing {
 
         fn pushes(&self, _: &Scene, _: f64) -> Vec<(usize, DVec2)> {
             Vec::new()
+        }
+
+        fn piece_fit(&self, _: &Scene, _: usize, _: f64) -> PieceFit {
+            PieceFit::default()
         }
     }
 }

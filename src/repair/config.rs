@@ -30,6 +30,8 @@ pub enum StepName {
     FitIntoRoom,
     /// Pieces pushed or narrowed out of the bones that enter them (`off_bodies`).
     OffBodies,
+    /// Pieces that hold people reshaped out of the bones that still enter them (`fit_to_bodies`).
+    FitToBodies,
     /// Pieces people still pass through left out (`left_out`).
     LeftOut,
     /// Overlaps that survive narrowed away or resolved by removing the smaller piece (`overlaps`).
@@ -38,7 +40,7 @@ pub enum StepName {
 
 impl StepName {
     /// Every step, in the order the default pipeline runs them.
-    pub const ALL: [StepName; 9] = [
+    pub const ALL: [StepName; 10] = [
         StepName::Settle,
         StepName::Relocate,
         StepName::DeepSeats,
@@ -46,6 +48,7 @@ impl StepName {
         StepName::WideSeats,
         StepName::FitIntoRoom,
         StepName::OffBodies,
+        StepName::FitToBodies,
         StepName::LeftOut,
         StepName::Overlaps,
     ];
@@ -60,6 +63,7 @@ impl StepName {
             StepName::WideSeats => "wide_seats",
             StepName::FitIntoRoom => "fit_into_room",
             StepName::OffBodies => "off_bodies",
+            StepName::FitToBodies => "fit_to_bodies",
             StepName::LeftOut => "left_out",
             StepName::Overlaps => "overlaps",
         }
@@ -101,6 +105,8 @@ pub struct RepairConfig {
     pub wide_seats: WideSeatsConfig,
     /// `off_bodies`' settings.
     pub off_bodies: OffBodiesConfig,
+    /// `fit_to_bodies`' settings.
+    pub fit_to_bodies: FitToBodiesConfig,
     /// `left_out`'s settings.
     pub left_out: LeftOutConfig,
     /// Whether a layout that passed `shade-sim check` before repair and fails it after is given
@@ -123,6 +129,7 @@ impl Default for RepairConfig {
             sofas_to_sleepers: SofasToSleepersConfig::default(),
             wide_seats: WideSeatsConfig::default(),
             off_bodies: OffBodiesConfig::default(),
+            fit_to_bodies: FitToBodiesConfig::default(),
             left_out: LeftOutConfig::default(),
             keep_passing: true,
         }
@@ -345,6 +352,37 @@ impl Default for OffBodiesConfig {
     }
 }
 
+/// `fit_to_bodies`: the changes tried on a piece that holds people and that bones enter.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct FitToBodiesConfig {
+    /// The lengths a change moves the piece or one of its sides by (m, default 1, 2, 4, 8 and
+    /// 16 cm; each is tried in every direction, the best change of all is taken).
+    pub steps: Vec<f64>,
+    /// Changes taken one after another at most (default 12).
+    pub rounds: usize,
+    /// How far under the check's 2 cm tolerance a bone's depth starts to count (m, default
+    /// 0.005: the piece ends 0.5 cm clear of passing by a hair).
+    pub margin: f64,
+    /// Least fall in the summed depth (m over bones and frames) a change must bring (default 0.001).
+    pub min_gain: f64,
+    /// Where reshaping leaves bones in the piece, try it as each other category that affords what
+    /// its people do, and take one that leaves none (default true).
+    pub other_categories: bool,
+}
+
+impl Default for FitToBodiesConfig {
+    fn default() -> FitToBodiesConfig {
+        FitToBodiesConfig {
+            steps: vec![0.01, 0.02, 0.04, 0.08, 0.16],
+            rounds: 12,
+            margin: 0.005,
+            min_gain: 0.001,
+            other_categories: true,
+        }
+    }
+}
+
 /// `left_out`: who counts as sitting at a table (such a table is never left out).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -429,6 +467,7 @@ impl RepairConfig {
             ("sofas_to_sleepers.off_middle", self.sofas_to_sleepers.off_middle),
             ("wide_seats.margin", self.wide_seats.margin),
             ("off_bodies.margin", self.off_bodies.margin),
+            ("fit_to_bodies.min_gain", self.fit_to_bodies.min_gain),
             ("left_out.sits_at_reach", self.left_out.sits_at_reach),
             ("left_out.sits_at_above", self.left_out.sits_at_above),
         ];
@@ -444,6 +483,13 @@ impl RepairConfig {
             ("narrowing.max_share", self.narrowing.max_share),
             ("walls.facing_share", self.walls.facing_share),
         ];
+        let f = &self.fit_to_bodies;
+        if !(f.margin.is_finite() && (0.0..0.02).contains(&f.margin)) {
+            return Err(("fit_to_bodies.margin".into(), format!("{} is not between 0 and the check's 0.02 m", f.margin)));
+        }
+        if f.steps.len() > 16 || f.steps.iter().any(|v| !(v.is_finite() && (0.001..=1.0).contains(v))) {
+            return Err(("fit_to_bodies.steps".into(), "not at most 16 lengths between 0.001 and 1 m".into()));
+        }
         for (field, v) in shares {
             if !(v.is_finite() && (0.0..=1.0).contains(&v)) {
                 return Err((field.into(), format!("{v} is not a share between 0 and 1")));
@@ -464,6 +510,7 @@ impl RepairConfig {
             ("settle.rounds", s.rounds),
             ("settle.pathless_rounds", s.pathless_rounds),
             ("off_bodies.rounds", self.off_bodies.rounds),
+            ("fit_to_bodies.rounds", self.fit_to_bodies.rounds),
             ("fit_into_room.cuts", self.fit_into_room.cuts),
         ];
         for (field, n) in counts {
@@ -488,7 +535,7 @@ mod tests {
     #[test]
     fn an_empty_object_is_the_default_pipeline() {
         assert_eq!(RepairConfig::from_json("{}").unwrap(), RepairConfig::default());
-        assert_eq!(RepairConfig::default().steps.len(), 9);
+        assert_eq!(RepairConfig::default().steps.len(), 10);
     }
 
     #[test]
@@ -517,6 +564,8 @@ mod tests {
         assert_eq!(field(r#"{"steps": ["settle", "bed_swap"]}"#), "steps[1]");
         assert_eq!(field(r#"{"bed_swap": {"keep_cover": 0.9}}"#), "bed_swap");
         assert_eq!(field(r#"{"fit_into_room": {"cuts": 5000}}"#), "fit_into_room.cuts");
+        assert_eq!(field(r#"{"fit_to_bodies": {"margin": 0.03}}"#), "fit_to_bodies.margin");
+        assert_eq!(field(r#"{"fit_to_bodies": {"steps": [0.01, -1]}}"#), "fit_to_bodies.steps");
         assert_eq!(field(r#"{} x"#), ".");
         assert_eq!(field("{"), ".");
     }

@@ -16,6 +16,7 @@
 //! | `wide_seats` | a sofa whose people overhang its seat grows at that end | `wide_seats`, `gap` |
 //! | `fit_into_room` | a piece poking out of the floor plan is moved back or narrowed | `fit_into_room`, `narrowing`, `holding`, `gap` |
 //! | `off_bodies` | a piece holding nobody is pushed or narrowed out of the bones that enter it | `off_bodies`, `narrowing`, `gap` |
+//! | `fit_to_bodies` | a piece holding somebody that bones still enter is moved or reshaped a few centimetres at a time, its people kept supported | `fit_to_bodies`, `gap` |
 //! | `left_out` | a piece holding nobody that people still pass through is left out | `left_out` |
 //! | `overlaps` | overlaps that survive are narrowed away, or the smaller piece goes | `narrowing`, `gap` |
 //!
@@ -28,6 +29,7 @@ mod completion;
 mod config;
 mod deep_seats;
 mod fit_into_room;
+mod fit_to_bodies;
 mod helpers;
 mod in_use;
 mod left_out;
@@ -46,7 +48,7 @@ mod wide_seats;
 pub use clearance::Clearance;
 pub use completion::SeatGaps;
 pub use config::{
-    CompletionConfig, FitIntoRoomConfig, HoldingConfig, LeftOutConfig, NarrowingConfig, OffBodiesConfig,
+    CompletionConfig, FitIntoRoomConfig, FitToBodiesConfig, HoldingConfig, LeftOutConfig, NarrowingConfig, OffBodiesConfig,
     RelocateConfig, RepairConfig, RepairConfigError, SettleConfig, SofasToSleepersConfig, StepName, WallsConfig,
     WideSeatsConfig,
 };
@@ -66,6 +68,7 @@ pub fn step(name: StepName) -> Box<dyn RepairStep> {
         StepName::WideSeats => Box::new(wide_seats::WideSeats),
         StepName::FitIntoRoom => Box::new(fit_into_room::FitIntoRoom),
         StepName::OffBodies => Box::new(off_bodies::OffBodies),
+        StepName::FitToBodies => Box::new(fit_to_bodies::FitToBodies),
         StepName::LeftOut => Box::new(left_out::LeftOut),
         StepName::Overlaps => Box::new(overlaps::Overlaps),
     }

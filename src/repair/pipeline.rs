@@ -88,6 +88,11 @@ pub enum StepReport {
         /// Pieces pushed or narrowed.
         pushed: usize,
     },
+    /// `fit_to_bodies`: pieces that hold people reshaped out of bones.
+    FitToBodies {
+        /// Pieces reshaped.
+        fitted: usize,
+    },
     /// `left_out`: pieces left out.
     LeftOut {
         /// Pieces left out.
@@ -113,6 +118,7 @@ impl StepReport {
             | StepReport::WideSeats { widened: n }
             | StepReport::FitIntoRoom { narrowed: n }
             | StepReport::OffBodies { pushed: n }
+            | StepReport::FitToBodies { fitted: n }
             | StepReport::LeftOut { left_out: n } => n,
             StepReport::Overlaps { narrowed, removed } => narrowed + removed,
         }
@@ -180,6 +186,7 @@ impl RepairReport {
                 StepReport::WideSeats { widened } => t.widened += widened,
                 StepReport::FitIntoRoom { narrowed } => t.narrowed += narrowed,
                 StepReport::OffBodies { pushed } => t.pushed += pushed,
+                StepReport::FitToBodies { fitted } => t.fitted += fitted,
                 StepReport::LeftOut { left_out } => t.left_out += left_out,
                 StepReport::Overlaps { narrowed, removed } => {
                     t.narrowed += narrowed;
@@ -207,6 +214,8 @@ pub struct RepairTotals {
     pub narrowed: usize,
     /// Pieces pushed or narrowed out of bones.
     pub pushed: usize,
+    /// Pieces that hold people reshaped out of bones.
+    pub fitted: usize,
     /// Pieces left out.
     pub left_out: usize,
     /// Pieces removed from overlaps.
@@ -225,6 +234,7 @@ impl std::iter::Sum for RepairTotals {
             widened: a.widened + t.widened,
             narrowed: a.narrowed + t.narrowed,
             pushed: a.pushed + t.pushed,
+            fitted: a.fitted + t.fitted,
             left_out: a.left_out + t.left_out,
             removed: a.removed + t.removed,
             kept_as_given: a.kept_as_given + t.kept_as_given,

@@ -237,7 +237,7 @@ fn gap_below(p: DVec3, z: f64, furniture: &[Solid]) -> f64 {
 }
 
 /// Missing support of sitting and lying humans and far-off touching hands.
-fn support(human: &Human, furniture: &[Solid], limit: f64) -> Vec<Violation> {
+pub(super) fn support(human: &Human, furniture: &[Solid], limit: f64) -> Vec<Violation> {
     let sk = &human.skeleton;
     let ids = |names: &[&str]| names.iter().filter_map(|n| sk.joint(n)).collect::<Vec<_>>();
     let mut out = Vec::new();

@@ -8,6 +8,7 @@ mod check;
 #[cfg(feature = "mujoco")]
 mod mujoco;
 mod physics;
+mod piece_fit;
 mod replay;
 mod solids;
 mod stability;
@@ -17,6 +18,7 @@ pub use check::{CheckConfig, CheckReport, capsule_depth, capsule_depth_beyond, c
 #[cfg(feature = "mujoco")]
 pub use mujoco::mujoco_replay;
 pub use physics::SimPhysics;
+pub use piece_fit::piece_fit;
 pub use replay::{EngineContact, exact_contacts, rapier_pushes, rapier_replay};
 pub use solids::{Owner, Solid, furniture_solids, pose_of, wall_solids};
 pub use stability::{build_world, unstable_objects};

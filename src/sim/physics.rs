@@ -3,7 +3,7 @@
 //! only through the trait.
 
 use super::{exact_contacts, rapier_pushes};
-use crate::physics::{EngineContact, Physics};
+use crate::physics::{EngineContact, Physics, PieceFit};
 use crate::scene::Scene;
 use glam::DVec2;
 
@@ -22,5 +22,9 @@ impl Physics for SimPhysics {
 
     fn pushes(&self, scene: &Scene, tolerance: f64) -> Vec<(usize, DVec2)> {
         rapier_pushes(scene, tolerance)
+    }
+
+    fn piece_fit(&self, scene: &Scene, object: usize, tolerance: f64) -> PieceFit {
+        super::piece_fit(scene, object, tolerance)
     }
 }

@@ -1,0 +1,385 @@
+//! `fit_to_bodies` (ours): pieces that hold people reshaped, a few centimetres at a time, until the
+//! bodies around them stop entering them.
+//!
+//! `off_bodies` moves the pieces that hold nobody; a seat, bed or table somebody uses stays where
+//! `settle` fitted it under its people. When the model's piece is a little too shallow, too
+//! narrow, too tall or in the wrong place for the bodies around it — a sitter's back in a
+//! loveseat's backrest and their shins in its front, a walker's hip through the end of the sofa
+//! they pass — nothing else mends it. This step searches, for each such piece, the small changes
+//! of its box: moving it along its own axes, moving one of its four sides or its top in or out, by
+//! each of [`FitToBodiesConfig::steps`](super::config::FitToBodiesConfig::steps). It takes the change that takes the bones furthest out of
+//! it (the check's exact capsule depths, [`Physics::piece_fit`]) and repeats while some change
+//! helps. A change is allowed only where every person the check found supported stays supported
+//! (its own support test), the piece stays inside the floor plan and no further into any other
+//! piece, and each of its sizes stays within its category's real sizes (or no further outside
+//! them). One mechanism for every way a held piece can meet a body; it knows nothing of what the
+//! piece or the body is.
+//!
+//! Nothing changes when no change helps; hanging pieces are left alone.
+
+use super::config::{RepairConfig, StepName};
+use super::helpers::worst_offence;
+use super::pipeline::{RepairStep, StepReport, Workspace};
+use crate::furniture::size_range;
+use crate::geom::{Polygon, intersection_volume};
+use super::occupancy::Occupancy;
+use crate::physics::{Owner, PHYS_TOLERANCE, Physics};
+use crate::scene::{Action, Category, Object, Scene};
+use glam::DVec2;
+
+/// The changes of `o` one round tries: for each step length, a move along each local axis both
+/// ways, each side of its footprint out and in, and its top up and down.
+fn changes(o: &Object, steps: &[f64]) -> Vec<Object> {
+    let (ax, ay) = o.obox().axes();
+    let axes = [ax, ay];
+    let mut out = Vec::with_capacity(steps.len() * 14);
+    for &s in steps {
+        for (k, axis) in axes.iter().enumerate() {
+            for sign in [-1.0, 1.0] {
+                // Moved along the axis.
+                let mut moved = o.clone();
+                let m: DVec2 = *axis * (sign * s);
+                moved.center[0] += m.x;
+                moved.center[1] += m.y;
+                out.push(moved);
+                // The side on `sign`'s end out (grow) and in (shrink), the other side staying.
+                for grow in [-1.0, 1.0] {
+                    let mut sided = o.clone();
+                    sided.size[k] += grow * s;
+                    let m: DVec2 = *axis * (sign * grow * s * 0.5);
+                    sided.center[0] += m.x;
+                    sided.center[1] += m.y;
+                    out.push(sided);
+                }
+            }
+        }
+        for grow in [-1.0, 1.0] {
+            let mut topped = o.clone();
+            topped.size[2] += grow * s;
+            topped.center[2] += grow * s * 0.5;
+            out.push(topped);
+        }
+    }
+    out
+}
+
+/// Whether `c`'s sizes are within its category's real ones, or no further outside them than
+/// `before`'s.
+fn real_enough(c: &Object, before: &Object) -> bool {
+    (0..3).all(|k| {
+        let (lo, hi) = size_range(c.category, k);
+        let outside = |v: f64| (lo - v).max(v - hi).max(0.0);
+        c.size[k] > 0.05 && outside(c.size[k]) <= outside(before.size[k]) + 1e-9
+    })
+}
+
+/// What a piece may not do while it changes: go further out of the floor plan or further into
+/// another piece than it is.
+struct Room<'a> {
+    polygon: Polygon,
+    gap: f64,
+    others: &'a [Object],
+    /// How far piece `i` pokes out of the floor plan now (m, [`worst_offence`]).
+    outside: f64,
+    /// How far piece `i` overlaps each other piece now (m³).
+    overlap: Vec<f64>,
+}
+
+impl<'a> Room<'a> {
+    /// Piece `i` of `objects` as it is.
+    fn of(scene: &Scene, objects: &'a [Object], i: usize, gap: f64) -> Room<'a> {
+        let polygon = scene.floor_plan.polygon();
+        let b = objects[i].obox();
+        let outside = worst_offence(&b, &polygon, gap).map_or(0.0, |w| w.0);
+        let overlap = objects.iter().map(|o| intersection_volume(&b, &o.obox())).collect();
+        Room { polygon, gap, others: objects, outside, overlap }
+    }
+
+    fn allows(&self, i: usize, c: &Object) -> bool {
+        let b = c.obox();
+        worst_offence(&b, &self.polygon, self.gap).map_or(0.0, |w| w.0) <= self.outside + 1e-9
+            && self
+                .others
+                .iter()
+                .enumerate()
+                .all(|(j, other)| j == i || intersection_volume(&b, &other.obox()) <= self.overlap[j] + 1e-9)
+    }
+}
+
+/// The search's fixed terms for one piece: who must stay supported, the depth tolerance.
+struct Search<'a> {
+    i: usize,
+    physics: &'a dyn Physics,
+    config: &'a RepairConfig,
+    tolerance: f64,
+    /// The people the check found unsupported before the piece changed (nobody else may join them).
+    unsupported: Vec<usize>,
+}
+
+impl Search<'_> {
+    /// How deep the bones are in `o` put in place of the piece, where everybody supported before
+    /// stays supported; `None` otherwise.
+    fn depth(&self, scene: &mut Scene, o: &Object) -> Option<f64> {
+        let kept = std::mem::replace(&mut scene.objects[self.i], o.clone());
+        let fit = self.physics.piece_fit(scene, self.i, self.tolerance);
+        scene.objects[self.i] = kept;
+        fit.unsupported.iter().all(|h| self.unsupported.contains(h)).then_some(fit.depth)
+    }
+
+    /// The piece reshaped from `from` ([`changes`], the best change each round, while one helps)
+    /// and the depth it ends with; sizes no further outside the real ones than `from`'s.
+    fn run(&self, scene: &mut Scene, from: Object, depth: f64) -> (Object, f64) {
+        let cfg = &self.config.fit_to_bodies;
+        let others = scene.objects.clone();
+        let room = Room::of(scene, &others, self.i, self.config.gap);
+        let mut best = (from.clone(), depth);
+        for _ in 0..cfg.rounds {
+            if best.1 <= 0.0 {
+                break;
+            }
+            let mut round_best: Option<(Object, f64)> = None;
+            for c in changes(&best.0, &cfg.steps) {
+                if !real_enough(&c, &from) || !room.allows(self.i, &c) {
+                    continue;
+                }
+                let bar = round_best.as_ref().map_or(best.1 - cfg.min_gain, |r| r.1);
+                if let Some(d) = self.depth(scene, &c).filter(|&d| d < bar) {
+                    round_best = Some((c, d));
+                }
+            }
+            match round_best {
+                Some(r) => best = r,
+                None => break,
+            }
+        }
+        best
+    }
+}
+
+/// `o` as a piece of `category`: each size brought into that category's real sizes, its centre
+/// kept.
+fn as_category(o: &Object, category: Category) -> Object {
+    let mut c = o.clone();
+    c.category = category;
+    for k in 0..3 {
+        let (lo, hi) = size_range(category, k);
+        c.size[k] = c.size[k].clamp(lo, hi);
+    }
+    c.center[2] = c.size[2] * 0.5 + (o.center[2] - o.size[2] * 0.5);
+    c
+}
+
+/// Reshapes object `i` of `scene` while that takes bones out of it ([`changes`]); where that
+/// leaves bones in it, tries it as each other category that affords what its people do
+/// (`affords`), reshaped the same way, and takes the first that leaves no bone in it, the one
+/// nearest its size. Returns whether it changed.
+fn fit_piece(scene: &mut Scene, i: usize, affords: &[Action], physics: &dyn Physics, config: &RepairConfig) -> bool {
+    let tolerance = PHYS_TOLERANCE - config.fit_to_bodies.margin;
+    let given = scene.objects[i].clone();
+    let start = physics.piece_fit(scene, i, tolerance);
+    let search = Search { i, physics, config, tolerance, unsupported: start.unsupported };
+    let mut best = search.run(scene, given.clone(), start.depth);
+    if best.1 > 0.0 && config.fit_to_bodies.other_categories {
+        let others = scene.room_type.categories().iter().filter(|&&c| {
+            c != given.category && !c.is_hanging() && affords.iter().all(|&a| c.affords(a))
+        });
+        let size_change = |o: &Object| (0..3).map(|k| (o.size[k] - given.size[k]).abs()).sum::<f64>();
+        let mut clean: Option<Object> = None;
+        for &category in others {
+            let from = as_category(&given, category);
+            let Some(depth) = search.depth(scene, &from) else { continue };
+            let (o, d) = search.run(scene, from, depth);
+            if d <= 0.0 && clean.as_ref().is_none_or(|c| size_change(&o) < size_change(c)) {
+                clean = Some(o);
+            }
+        }
+        if let Some(o) = clean {
+            best = (o, 0.0);
+        }
+    }
+    scene.objects[i] = best.0;
+    scene.objects[i] != given
+}
+
+/// Reshapes every standing piece that holds somebody and that a bone enters deeper than the
+/// check's tolerance. Returns how many changed.
+fn fit_to_bodies(scene: &mut Scene, people: &Occupancy, holds: &[bool], physics: &dyn Physics, config: &RepairConfig) -> usize {
+    let contacts = physics.exact_contacts(scene, PHYS_TOLERANCE);
+    let mut entered: Vec<usize> = contacts
+        .iter()
+        .filter_map(|c| match c.owner {
+            Owner::Object(i) if holds[i] && !scene.objects[i].category.is_hanging() => Some(i),
+            _ => None,
+        })
+        .collect();
+    entered.sort_unstable();
+    entered.dedup();
+    let mut fitted = 0;
+    for i in entered {
+        let affords: Vec<Action> = people.held_by(i).iter().map(|(c, _)| c.action).collect();
+        fitted += usize::from(fit_piece(scene, i, &affords, physics, config));
+    }
+    fitted
+}
+
+/// The `fit_to_bodies` step.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct FitToBodies;
+
+impl RepairStep for FitToBodies {
+    fn name(&self) -> StepName {
+        StepName::FitToBodies
+    }
+
+    fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport {
+        let physics = work.physics;
+        let (people, holds) = work.holds(scene.objects.len());
+        let fitted = fit_to_bodies(scene, people, &holds.clone(), physics, config);
+        if fitted > 0 {
+            // The bones `off_bodies` left for `left_out` have moved.
+            work.bones = work.bones.take().map(|_| physics.exact_contacts(scene, PHYS_TOLERANCE));
+        }
+        StepReport::FitToBodies { fitted }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::data::generate_room;
+    use crate::physics::PieceFit;
+    use crate::scene::{Group, RoomType};
+    use crate::sim::{SimPhysics, check_scene, exact_contacts};
+    use glam::DVec2;
+
+    /// The first generated living room with a sofa a sitter sits on, squarely turned, and its index.
+    fn sofa_with_sitter() -> (Scene, usize) {
+        for index in 0..20 {
+            let scene = generate_room(RoomType::Living, 3, index, false).scene;
+            let people = occupancy(&scene);
+            let found = (0..scene.objects.len()).find(|&i| {
+                let o = &scene.objects[i];
+                o.category.group() == Group::Sofa
+                    && (o.yaw / std::f64::consts::FRAC_PI_2).fract().abs() < 1e-6
+                    && people.held_by(i).iter().any(|(c, _)| c.action == Action::Sit)
+            });
+            if let Some(i) = found.filter(|&i| deepest_in(&scene, i) <= PHYS_TOLERANCE) {
+                return (scene, i);
+            }
+        }
+        panic!("no sofa with a sitter");
+    }
+
+    /// Who holds whom in `scene`, as the pipeline's workspace finds it.
+    fn occupancy(scene: &Scene) -> Occupancy {
+        let config = RepairConfig::default();
+        let mut people = Occupancy::of(scene, &config.holding);
+        people.assign(scene, &config.settle);
+        people
+    }
+
+    /// The deepest bone in object `i` (m).
+    fn deepest_in(scene: &Scene, i: usize) -> f64 {
+        exact_contacts(scene, 0.0).iter().filter(|c| c.owner == Owner::Object(i)).map(|c| c.depth).fold(0.0, f64::max)
+    }
+
+    /// Runs the step on `scene` with `config` and `sim`'s physics; the pieces it changed.
+    fn fit(scene: &mut Scene, config: &RepairConfig) -> usize {
+        let mut work = Workspace::new(scene, config, &SimPhysics);
+        match FitToBodies.run(scene, &mut work, config) {
+            StepReport::FitToBodies { fitted } => fitted,
+            other => panic!("{other:?}"),
+        }
+    }
+
+    /// Moves object `i` by `forward` (m) along its own front axis.
+    fn push_forward(scene: &mut Scene, i: usize, forward: f64) {
+        let (_, ay) = scene.objects[i].obox().axes();
+        let m = ay * forward;
+        scene.objects[i].center[0] += m.x;
+        scene.objects[i].center[1] += m.y;
+    }
+
+    #[test]
+    fn a_sofa_pushed_into_its_sitters_back_comes_back_off_it() {
+        let (mut scene, i) = sofa_with_sitter();
+        let clean = scene.objects[i].clone();
+        push_forward(&mut scene, i, 0.08);
+        assert!(deepest_in(&scene, i) > 0.04, "the backrest is in the sitter: {}", deepest_in(&scene, i));
+        let mut config = RepairConfig::default();
+        config.fit_to_bodies.other_categories = false;
+        assert_eq!(fit(&mut scene, &config), 1);
+        let o = &scene.objects[i];
+        assert!(deepest_in(&scene, i) <= PHYS_TOLERANCE, "{}", deepest_in(&scene, i));
+        assert_eq!(o.category, clean.category);
+        // Back by about the push (a change of size may take some of it), its sitter still on it.
+        let back = DVec2::new(o.center[0] - clean.center[0], o.center[1] - clean.center[1]).length();
+        assert!(back < 0.08 + 1e-9, "{back}");
+        let report = check_scene(&scene, &Default::default());
+        assert_eq!(report.count(crate::sim::ViolationKind::Unsupported), 0, "{:?}", report.violations);
+    }
+
+    #[test]
+    fn pieces_nobody_enters_or_that_hold_nobody_stay_as_they_are() {
+        let (mut scene, i) = sofa_with_sitter();
+        let before = scene.objects.clone();
+        assert_eq!(fit(&mut scene, &RepairConfig::default()), 0);
+        assert_eq!(scene.objects, before);
+        // The sofa in the sitter, but counted as holding nobody: `off_bodies`' work, not this step's.
+        push_forward(&mut scene, i, 0.08);
+        let moved = scene.objects.clone();
+        let holds = vec![false; scene.objects.len()];
+        let people = occupancy(&scene);
+        assert_eq!(fit_to_bodies(&mut scene, &people, &holds, &SimPhysics, &RepairConfig::default()), 0);
+        assert_eq!(scene.objects, moved);
+    }
+
+    #[test]
+    fn a_sofa_that_cannot_hold_its_sitter_against_a_wall_becomes_a_seat_that_can() {
+        let (mut scene, i) = sofa_with_sitter();
+        // Nothing else in the room; the sofa pushed 20 cm into its sitter and the floor plan cut
+        // at its back, so that no sofa fits between the wall and the sitter's back.
+        scene.objects = vec![scene.objects[i].clone()];
+        push_forward(&mut scene, 0, 0.20);
+        let o = scene.objects[0].obox();
+        let (_, ay) = o.axes();
+        let back = o.center.truncate() - ay * (o.size.y * 0.5);
+        let along = |p: DVec2| p.dot(ay);
+        let (lo, hi) = scene.floor_plan.polygon().bounds();
+        let corners = [lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)];
+        let cut: Vec<[f64; 2]> = corners
+            .iter()
+            .map(|&c| {
+                let d = along(c) - along(back);
+                let p = if d < 0.0 { c - ay * d } else { c };
+                [p.x, p.y]
+            })
+            .collect();
+        scene.floor_plan.polygon = cut;
+        assert!(deepest_in(&scene, 0) > 0.04);
+        // The other people's pieces are gone: they lack support before and after.
+        let unsupported = SimPhysics.piece_fit(&scene, 0, PHYS_TOLERANCE).unsupported;
+        let sitters: Vec<usize> = occupancy(&scene)
+            .held_by(0)
+            .iter()
+            .map(|(c, _)| scene.humans.iter().position(|h| h.id == c.human).unwrap())
+            .collect();
+        assert!(!sitters.is_empty() && sitters.iter().all(|h| !unsupported.contains(h)), "{sitters:?} {unsupported:?}");
+        let mut config = RepairConfig::default();
+        config.fit_to_bodies.other_categories = false;
+        let mut kept = scene.clone();
+        fit(&mut kept, &config);
+        assert!(deepest_in(&kept, 0) > PHYS_TOLERANCE, "reshaping alone cannot mend it");
+        assert_eq!(fit(&mut scene, &RepairConfig::default()), 1);
+        let o = &scene.objects[0];
+        assert_ne!(o.category, kept.objects[0].category);
+        assert!(o.category.affords(Action::Sit), "{}", o.category);
+        assert!(deepest_in(&scene, 0) <= PHYS_TOLERANCE, "{}: {}", o.category, deepest_in(&scene, 0));
+        for k in 0..3 {
+            let (lo, hi) = size_range(o.category, k);
+            assert!(o.size[k] >= lo - 1e-9 && o.size[k] <= hi + 1e-9, "{} {:?}", o.category, o.size);
+        }
+        let fit = SimPhysics.piece_fit(&scene, 0, PHYS_TOLERANCE);
+        assert_eq!(fit, PieceFit { depth: 0.0, unsupported });
+    }
+}
