@@ -485,7 +485,10 @@ impl RepairConfig {
         ];
         let f = &self.fit_to_bodies;
         if !(f.margin.is_finite() && (0.0..0.02).contains(&f.margin)) {
-            return Err(("fit_to_bodies.margin".into(), format!("{} is not between 0 and the check's 0.02 m", f.margin)));
+            return Err((
+                "fit_to_bodies.margin".into(),
+                format!("{} is not between 0 and the check's 0.02 m", f.margin),
+            ));
         }
         if f.steps.len() > 16 || f.steps.iter().any(|v| !(v.is_finite() && (0.001..=1.0).contains(v))) {
             return Err(("fit_to_bodies.steps".into(), "not at most 16 lengths between 0.001 and 1 m".into()));

@@ -19,10 +19,10 @@
 
 use super::config::{RepairConfig, StepName};
 use super::helpers::worst_offence;
+use super::occupancy::Occupancy;
 use super::pipeline::{RepairStep, StepReport, Workspace};
 use crate::furniture::size_range;
 use crate::geom::{Polygon, intersection_volume};
-use super::occupancy::Occupancy;
 use crate::physics::{Owner, PHYS_TOLERANCE, Physics};
 use crate::scene::{Action, Category, Object, Scene};
 use glam::DVec2;
@@ -180,9 +180,11 @@ fn fit_piece(scene: &mut Scene, i: usize, affords: &[Action], physics: &dyn Phys
     let search = Search { i, physics, config, tolerance, unsupported: start.unsupported };
     let mut best = search.run(scene, given.clone(), start.depth);
     if best.1 > 0.0 && config.fit_to_bodies.other_categories {
-        let others = scene.room_type.categories().iter().filter(|&&c| {
-            c != given.category && !c.is_hanging() && affords.iter().all(|&a| c.affords(a))
-        });
+        let others = scene
+            .room_type
+            .categories()
+            .iter()
+            .filter(|&&c| c != given.category && !c.is_hanging() && affords.iter().all(|&a| c.affords(a)));
         let size_change = |o: &Object| (0..3).map(|k| (o.size[k] - given.size[k]).abs()).sum::<f64>();
         let mut clean: Option<Object> = None;
         for &category in others {
@@ -203,7 +205,13 @@ fn fit_piece(scene: &mut Scene, i: usize, affords: &[Action], physics: &dyn Phys
 
 /// Reshapes every standing piece that holds somebody and that a bone enters deeper than the
 /// check's tolerance. Returns how many changed.
-fn fit_to_bodies(scene: &mut Scene, people: &Occupancy, holds: &[bool], physics: &dyn Physics, config: &RepairConfig) -> usize {
+fn fit_to_bodies(
+    scene: &mut Scene,
+    people: &Occupancy,
+    holds: &[bool],
+    physics: &dyn Physics,
+    config: &RepairConfig,
+) -> usize {
     let contacts = physics.exact_contacts(scene, PHYS_TOLERANCE);
     let mut entered: Vec<usize> = contacts
         .iter()

@@ -48,9 +48,9 @@ mod wide_seats;
 pub use clearance::Clearance;
 pub use completion::SeatGaps;
 pub use config::{
-    CompletionConfig, FitIntoRoomConfig, FitToBodiesConfig, HoldingConfig, LeftOutConfig, NarrowingConfig, OffBodiesConfig,
-    RelocateConfig, RepairConfig, RepairConfigError, SettleConfig, SofasToSleepersConfig, StepName, WallsConfig,
-    WideSeatsConfig,
+    CompletionConfig, FitIntoRoomConfig, FitToBodiesConfig, HoldingConfig, LeftOutConfig, NarrowingConfig,
+    OffBodiesConfig, RelocateConfig, RepairConfig, RepairConfigError, SettleConfig, SofasToSleepersConfig, StepName,
+    WallsConfig, WideSeatsConfig,
 };
 pub use occupancy::Occupancy;
 pub use pipeline::{Pipeline, RepairReport, RepairStep, RepairTotals, SettleReport, StepReport, Workspace};

@@ -66,8 +66,7 @@ mod tests {
         let contacts = exact_contacts(&scene, tolerance);
         let mut entered = 0;
         for i in 0..scene.objects.len() {
-            let want: f64 =
-                contacts.iter().filter(|c| c.owner == Owner::Object(i)).map(|c| c.depth - tolerance).sum();
+            let want: f64 = contacts.iter().filter(|c| c.owner == Owner::Object(i)).map(|c| c.depth - tolerance).sum();
             let got = piece_fit(&scene, i, tolerance);
             assert!((got.depth - want).abs() < 1e-9, "{i}: {} vs {want}", got.depth);
             entered += usize::from(want > 0.0);
