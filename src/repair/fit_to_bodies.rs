@@ -6,8 +6,8 @@
 //! narrow, too tall or in the wrong place for the bodies around it — a sitter's back in a
 //! loveseat's backrest and their shins in its front, a walker's hip through the end of the sofa
 //! they pass — nothing else mends it. This step searches, for each such piece, the small changes
-//! of its box: moving it along its own axes, moving one of its four sides or its top in or out, by
-//! each of [`FitToBodiesConfig::steps`](super::config::FitToBodiesConfig::steps). It takes the change that takes the bones furthest out of
+//! of its box: moving it along its own axes, moving one of its four sides or its top in or out, or
+//! turning it about its centre so that its corners move, by each of [`FitToBodiesConfig::steps`](super::config::FitToBodiesConfig::steps). It takes the change that takes the bones furthest out of
 //! it (the check's exact capsule depths, [`Physics::piece_fit`]) and repeats while some change
 //! helps. A change is allowed only where every person the check found supported stays supported
 //! (its own support test), the piece stays inside the floor plan and no further into any other
@@ -28,11 +28,12 @@ use crate::scene::{Action, Category, Object, Scene};
 use glam::DVec2;
 
 /// The changes of `o` one round tries: for each step length, a move along each local axis both
-/// ways, each side of its footprint out and in, and its top up and down.
+/// ways, each side of its footprint out and in, a turn each way that moves its corners by that
+/// much, and its top up and down.
 fn changes(o: &Object, steps: &[f64]) -> Vec<Object> {
     let (ax, ay) = o.obox().axes();
     let axes = [ax, ay];
-    let mut out = Vec::with_capacity(steps.len() * 14);
+    let mut out = Vec::with_capacity(steps.len() * 16);
     for &s in steps {
         for (k, axis) in axes.iter().enumerate() {
             for sign in [-1.0, 1.0] {
@@ -52,6 +53,13 @@ fn changes(o: &Object, steps: &[f64]) -> Vec<Object> {
                     out.push(sided);
                 }
             }
+        }
+        // Turned about its centre so that its corners move by s.
+        let half_diagonal = (o.size[0].hypot(o.size[1]) * 0.5).max(1e-3);
+        for sign in [-1.0, 1.0] {
+            let mut turned = o.clone();
+            turned.yaw += sign * s / half_diagonal;
+            out.push(turned);
         }
         for grow in [-1.0, 1.0] {
             let mut topped = o.clone();
