@@ -71,16 +71,17 @@ pub fn run(args: &RepairArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus>
         let t: RepairTotals = reports.iter().map(|r| r.totals).sum();
         print_text(&format!(
             "{} scenes repaired into {}: {moved} changed, largest move {:.3} m; objects: {} resized, {} added, \
-             {} trimmed, {} widened, {} narrowed, {} left out, {} removed; {} passing layouts kept as given (repair \
+             {} widened, {} narrowed, {} pushed, {} fitted to bodies, {} left out, {} removed; {} passing layouts kept as given (repair \
              made them fail)\n",
             reports.len(),
             out_dir.display(),
             t.settle.max_move,
             t.settle.resized,
             t.settle.added,
-            t.trimmed,
             t.widened,
             t.narrowed,
+            t.pushed,
+            t.fitted,
             t.left_out,
             t.removed,
             t.kept_as_given

@@ -20,10 +20,6 @@ pub enum StepName {
     Settle,
     /// Pieces holding nobody moved out of people's way to a free spot (`relocate`).
     Relocate,
-    /// Chairs and sofas too deep for their sitters' knees trimmed at the front (`deep_seats`).
-    DeepSeats,
-    /// Sofas whose sleeper lies behind the seat's middle trimmed at the front (`sofas_to_sleepers`).
-    SofasToSleepers,
     /// Sofas widened until their seat spans their people (`wide_seats`).
     WideSeats,
     /// Pieces poking out of the floor plan moved or narrowed inside (`fit_into_room`).
@@ -40,11 +36,9 @@ pub enum StepName {
 
 impl StepName {
     /// Every step, in the order the default pipeline runs them.
-    pub const ALL: [StepName; 10] = [
+    pub const ALL: [StepName; 8] = [
         StepName::Settle,
         StepName::Relocate,
-        StepName::DeepSeats,
-        StepName::SofasToSleepers,
         StepName::WideSeats,
         StepName::FitIntoRoom,
         StepName::OffBodies,
@@ -58,8 +52,6 @@ impl StepName {
         match self {
             StepName::Settle => "settle",
             StepName::Relocate => "relocate",
-            StepName::DeepSeats => "deep_seats",
-            StepName::SofasToSleepers => "sofas_to_sleepers",
             StepName::WideSeats => "wide_seats",
             StepName::FitIntoRoom => "fit_into_room",
             StepName::OffBodies => "off_bodies",
@@ -99,8 +91,6 @@ pub struct RepairConfig {
     pub relocate: RelocateConfig,
     /// `fit_into_room`'s settings.
     pub fit_into_room: FitIntoRoomConfig,
-    /// `sofas_to_sleepers`' settings.
-    pub sofas_to_sleepers: SofasToSleepersConfig,
     /// `wide_seats`' settings.
     pub wide_seats: WideSeatsConfig,
     /// `off_bodies`' settings.
@@ -126,7 +116,6 @@ impl Default for RepairConfig {
             walls: WallsConfig::default(),
             relocate: RelocateConfig::default(),
             fit_into_room: FitIntoRoomConfig::default(),
-            sofas_to_sleepers: SofasToSleepersConfig::default(),
             wide_seats: WideSeatsConfig::default(),
             off_bodies: OffBodiesConfig::default(),
             fit_to_bodies: FitToBodiesConfig::default(),
@@ -308,20 +297,6 @@ impl Default for FitIntoRoomConfig {
     }
 }
 
-/// `sofas_to_sleepers`: how far off the seat's middle a sleeper may lie.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct SofasToSleepersConfig {
-    /// Distance behind the seat's middle a sleeper may lie untrimmed (m, default 0.03).
-    pub off_middle: f64,
-}
-
-impl Default for SofasToSleepersConfig {
-    fn default() -> SofasToSleepersConfig {
-        SofasToSleepersConfig { off_middle: 0.03 }
-    }
-}
-
 /// `wide_seats`: the margin a seat is grown by past its people.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -464,7 +439,6 @@ impl RepairConfig {
             ("settle.place_width", s.place_width),
             ("narrowing.max", self.narrowing.max),
             ("relocate.max_move", self.relocate.max_move),
-            ("sofas_to_sleepers.off_middle", self.sofas_to_sleepers.off_middle),
             ("wide_seats.margin", self.wide_seats.margin),
             ("off_bodies.margin", self.off_bodies.margin),
             ("fit_to_bodies.min_gain", self.fit_to_bodies.min_gain),
@@ -538,7 +512,7 @@ mod tests {
     #[test]
     fn an_empty_object_is_the_default_pipeline() {
         assert_eq!(RepairConfig::from_json("{}").unwrap(), RepairConfig::default());
-        assert_eq!(RepairConfig::default().steps.len(), 10);
+        assert_eq!(RepairConfig::default().steps.len(), 8);
     }
 
     #[test]
@@ -566,6 +540,8 @@ mod tests {
         // Deleted steps (docs/RESULTS.md) are refused by name, with their settings.
         assert_eq!(field(r#"{"steps": ["settle", "bed_swap"]}"#), "steps[1]");
         assert_eq!(field(r#"{"bed_swap": {"keep_cover": 0.9}}"#), "bed_swap");
+        assert_eq!(field(r#"{"steps": ["deep_seats"]}"#), "steps[0]");
+        assert_eq!(field(r#"{"sofas_to_sleepers": {"off_middle": 0.03}}"#), "sofas_to_sleepers");
         assert_eq!(field(r#"{"fit_into_room": {"cuts": 5000}}"#), "fit_into_room.cuts");
         assert_eq!(field(r#"{"fit_to_bodies": {"margin": 0.03}}"#), "fit_to_bodies.margin");
         assert_eq!(field(r#"{"fit_to_bodies": {"steps": [0.01, -1]}}"#), "fit_to_bodies.steps");

@@ -1,14 +1,13 @@
 //! Geometry every repair step shares (ours): moving and narrowing a piece, a contact box's extent
 //! in a piece's frame and the part of the piece it must be on, the moves that keep people on their
 //! pieces, separating two footprints, keeping a footprint inside the floor plan (a gap from the
-//! walls, off an L-shaped room's inner corner), trimming a piece's front within its category's real
-//! sizes.
+//! walls, off an L-shaped room's inner corner).
 //!
 //! Steps import these; they decide nothing and read no configuration but what they are given.
 
 use super::completion::SeatGaps;
 use super::config::{HoldingConfig, NarrowingConfig};
-use crate::furniture::{PartRole, size_range, template};
+use crate::furniture::{PartRole, template};
 use crate::geom::{OBox, Polygon, facing};
 use crate::human::ContactBox;
 use crate::scene::{Action, Group, Object};
@@ -249,21 +248,4 @@ pub fn narrow_by(o: &mut Object, m: DVec2, limits: &NarrowingConfig) -> bool {
 /// shins and feet are in its way too.
 pub fn is_solid(o: &Object) -> bool {
     !template(o).parts.iter().any(|p| p.role == PartRole::Leg)
-}
-
-/// Takes `cut` (m) off `o`'s depth at its front, but no more than leaves its category's
-/// shallowest real piece; whether it took any.
-pub fn trim_front_within_real(o: &mut Object, cut: f64) -> bool {
-    let cut = cut.min(o.size[1] - size_range(o.category, 1).0);
-    if cut > 1e-3 {
-        trim_front(o, cut);
-    }
-    cut > 1e-3
-}
-
-/// Takes `cut` (m) off `o`'s depth at its front (local +y), its back where it was.
-pub fn trim_front(o: &mut Object, cut: f64) {
-    let (_, ay) = o.obox().axes();
-    o.size[1] -= cut;
-    shift(o, -ay * (cut * 0.5));
 }

@@ -11,8 +11,6 @@
 //! |---|---|---|
 //! | `settle` | contact boxes given to pieces that afford them (a real piece added for a box none can hold), seats turned and fitted to their people, pieces squared and put back against walls, rounds of moves: under their people, off paths, apart, inside | `settle`, `holding`, `completion`, `walls`, `gap` |
 //! | `relocate` | a piece holding nobody still in people's way moved to a free spot | `relocate`, `walls`, `gap` |
-//! | `deep_seats` | a chair or sofa too deep for its sitters' knees loses depth at the front | – |
-//! | `sofas_to_sleepers` | a sofa whose sleeper lies behind the seat's middle loses depth at the front | `sofas_to_sleepers` |
 //! | `wide_seats` | a sofa whose people overhang its seat grows at that end | `wide_seats`, `gap` |
 //! | `fit_into_room` | a piece poking out of the floor plan is moved back or narrowed | `fit_into_room`, `narrowing`, `holding`, `gap` |
 //! | `off_bodies` | a piece holding nobody is pushed or narrowed out of the bones that enter it | `off_bodies`, `narrowing`, `gap` |
@@ -27,7 +25,6 @@
 mod clearance;
 mod completion;
 mod config;
-mod deep_seats;
 mod fit_into_room;
 mod fit_to_bodies;
 mod helpers;
@@ -39,7 +36,6 @@ mod overlaps;
 mod pipeline;
 mod relocate;
 mod settle;
-mod sofas_to_sleepers;
 #[cfg(test)]
 pub(crate) mod tests;
 mod walls;
@@ -49,8 +45,8 @@ pub use clearance::Clearance;
 pub use completion::SeatGaps;
 pub use config::{
     CompletionConfig, FitIntoRoomConfig, FitToBodiesConfig, HoldingConfig, LeftOutConfig, NarrowingConfig,
-    OffBodiesConfig, RelocateConfig, RepairConfig, RepairConfigError, SettleConfig, SofasToSleepersConfig, StepName,
-    WallsConfig, WideSeatsConfig,
+    OffBodiesConfig, RelocateConfig, RepairConfig, RepairConfigError, SettleConfig, StepName, WallsConfig,
+    WideSeatsConfig,
 };
 pub use occupancy::Occupancy;
 pub use pipeline::{Pipeline, RepairReport, RepairStep, RepairTotals, SettleReport, StepReport, Workspace};
@@ -63,8 +59,6 @@ pub fn step(name: StepName) -> Box<dyn RepairStep> {
     match name {
         StepName::Settle => Box::new(settle::Settle),
         StepName::Relocate => Box::new(relocate::Relocate),
-        StepName::DeepSeats => Box::new(deep_seats::DeepSeats),
-        StepName::SofasToSleepers => Box::new(sofas_to_sleepers::SofasToSleepers),
         StepName::WideSeats => Box::new(wide_seats::WideSeats),
         StepName::FitIntoRoom => Box::new(fit_into_room::FitIntoRoom),
         StepName::OffBodies => Box::new(off_bodies::OffBodies),

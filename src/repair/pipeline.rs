@@ -63,16 +63,6 @@ pub enum StepReport {
         /// Pieces moved.
         relocated: usize,
     },
-    /// `deep_seats`: seats trimmed at the front.
-    DeepSeats {
-        /// Seats trimmed.
-        trimmed: usize,
-    },
-    /// `sofas_to_sleepers`: sofas trimmed at the front.
-    SofasToSleepers {
-        /// Sofas trimmed.
-        trimmed: usize,
-    },
     /// `wide_seats`: sofas widened.
     WideSeats {
         /// Sofas widened.
@@ -113,8 +103,6 @@ impl StepReport {
         match *self {
             StepReport::Settle(s) => s.resized + s.turned + s.added + s.squared + s.walled,
             StepReport::Relocate { relocated: n }
-            | StepReport::DeepSeats { trimmed: n }
-            | StepReport::SofasToSleepers { trimmed: n }
             | StepReport::WideSeats { widened: n }
             | StepReport::FitIntoRoom { narrowed: n }
             | StepReport::OffBodies { pushed: n }
@@ -182,7 +170,6 @@ impl RepairReport {
             match *s {
                 StepReport::Settle(r) => t.settle = t.settle.plus(&r),
                 StepReport::Relocate { relocated } => t.relocated += relocated,
-                StepReport::DeepSeats { trimmed } | StepReport::SofasToSleepers { trimmed } => t.trimmed += trimmed,
                 StepReport::WideSeats { widened } => t.widened += widened,
                 StepReport::FitIntoRoom { narrowed } => t.narrowed += narrowed,
                 StepReport::OffBodies { pushed } => t.pushed += pushed,
@@ -206,8 +193,6 @@ pub struct RepairTotals {
     pub settle: SettleReport,
     /// Pieces moved to a free spot.
     pub relocated: usize,
-    /// Seats and sofas trimmed at the front.
-    pub trimmed: usize,
     /// Sofas widened.
     pub widened: usize,
     /// Pieces narrowed (into the room, off paths, out of overlaps).
@@ -230,7 +215,6 @@ impl std::iter::Sum for RepairTotals {
         iter.fold(RepairTotals::default(), |a, t| RepairTotals {
             settle: a.settle.plus(&t.settle),
             relocated: a.relocated + t.relocated,
-            trimmed: a.trimmed + t.trimmed,
             widened: a.widened + t.widened,
             narrowed: a.narrowed + t.narrowed,
             pushed: a.pushed + t.pushed,
