@@ -26,7 +26,7 @@ pub enum StepName {
     FitIntoRoom,
     /// Pieces pushed or narrowed out of the bones that enter them (`off_bodies`).
     OffBodies,
-    /// Pieces that hold people reshaped out of the bones that still enter them (`fit_to_bodies`).
+    /// Pieces reshaped out of the bones that still enter them (`fit_to_bodies`).
     FitToBodies,
     /// Pieces people still pass through left out (`left_out`).
     LeftOut,

@@ -1,19 +1,23 @@
-//! `fit_to_bodies` (ours): pieces that hold people reshaped, a few centimetres at a time, until the
-//! bodies around them stop entering them.
+//! `fit_to_bodies` (ours): pieces that bones still enter reshaped, a few centimetres at a time,
+//! until the bodies around them stop entering them.
 //!
-//! `off_bodies` moves the pieces that hold nobody; a seat, bed or table somebody uses stays where
-//! `settle` fitted it under its people. When the model's piece is a little too shallow, too
-//! narrow, too tall or in the wrong place for the bodies around it — a sitter's back in a
-//! loveseat's backrest and their shins in its front, a walker's hip through the end of the sofa
-//! they pass — nothing else mends it. This step searches, for each such piece, the small changes
+//! `off_bodies` pushes the pieces that hold nobody by the deepest bone, in one direction; a seat,
+//! bed or table somebody uses stays where `settle` fitted it under its people. When the model's
+//! piece is a little too shallow, too narrow, too tall or in the wrong place for the bodies around
+//! it — a sitter's back in a loveseat's backrest and their shins in its front, a walker's hip
+//! through the end of the sofa they pass, a diner's thigh under a table top wedged between two
+//! others — neither mends it. This step searches, for each piece a bone still enters deeper than
+//! the check's tolerance, the small changes
 //! of its box: moving it along its own axes, moving one of its four sides or its top in or out, or
 //! turning it about its centre so that its corners move, by each of [`FitToBodiesConfig::steps`](super::config::FitToBodiesConfig::steps). It takes the change that takes the bones furthest out of
 //! it (the check's exact capsule depths, [`Physics::piece_fit`]) and repeats while some change
 //! helps. A change is allowed only where every person the check found supported stays supported
 //! (its own support test), the piece stays inside the floor plan and no further into any other
 //! piece, and each of its sizes stays within its category's real sizes (or no further outside
-//! them). One mechanism for every way a held piece can meet a body; it knows nothing of what the
-//! piece or the body is.
+//! them). Where no shape of a piece that holds people is clear of the bodies, the same search runs
+//! from each other category that affords what they do on it (a sofa whose sitter sits 30 cm from a
+//! wall becomes a stool); a piece that holds nobody keeps its category. One mechanism for every way
+//! a piece can meet a body; it knows nothing of what the piece or the body is.
 //!
 //! Nothing changes when no change helps; hanging pieces are left alone.
 
@@ -179,15 +183,15 @@ fn as_category(o: &Object, category: Category) -> Object {
 
 /// Reshapes object `i` of `scene` while that takes bones out of it ([`changes`]); where that
 /// leaves bones in it, tries it as each other category that affords what its people do
-/// (`affords`), reshaped the same way, and takes the first that leaves no bone in it, the one
-/// nearest its size. Returns whether it changed.
+/// (`affords`; none when it holds nobody), reshaped the same way, and takes the one nearest its
+/// size that leaves no bone in it. Returns whether it changed.
 fn fit_piece(scene: &mut Scene, i: usize, affords: &[Action], physics: &dyn Physics, config: &RepairConfig) -> bool {
     let tolerance = PHYS_TOLERANCE - config.fit_to_bodies.margin;
     let given = scene.objects[i].clone();
     let start = physics.piece_fit(scene, i, tolerance);
     let search = Search { i, physics, config, tolerance, unsupported: start.unsupported };
     let mut best = search.run(scene, given.clone(), start.depth);
-    if best.1 > 0.0 && config.fit_to_bodies.other_categories {
+    if best.1 > 0.0 && config.fit_to_bodies.other_categories && !affords.is_empty() {
         let others = scene
             .room_type
             .categories()
@@ -211,20 +215,14 @@ fn fit_piece(scene: &mut Scene, i: usize, affords: &[Action], physics: &dyn Phys
     scene.objects[i] != given
 }
 
-/// Reshapes every standing piece that holds somebody and that a bone enters deeper than the
-/// check's tolerance. Returns how many changed.
-fn fit_to_bodies(
-    scene: &mut Scene,
-    people: &Occupancy,
-    holds: &[bool],
-    physics: &dyn Physics,
-    config: &RepairConfig,
-) -> usize {
+/// Reshapes every standing piece that a bone enters deeper than the check's tolerance. Returns
+/// how many changed.
+fn fit_to_bodies(scene: &mut Scene, people: &Occupancy, physics: &dyn Physics, config: &RepairConfig) -> usize {
     let contacts = physics.exact_contacts(scene, PHYS_TOLERANCE);
     let mut entered: Vec<usize> = contacts
         .iter()
         .filter_map(|c| match c.owner {
-            Owner::Object(i) if holds[i] && !scene.objects[i].category.is_hanging() => Some(i),
+            Owner::Object(i) if !scene.objects[i].category.is_hanging() => Some(i),
             _ => None,
         })
         .collect();
@@ -249,8 +247,7 @@ impl RepairStep for FitToBodies {
 
     fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport {
         let physics = work.physics;
-        let (people, holds) = work.holds(scene.objects.len());
-        let fitted = fit_to_bodies(scene, people, &holds.clone(), physics, config);
+        let fitted = fit_to_bodies(scene, &work.people, physics, config);
         if fitted > 0 {
             // The bones `off_bodies` left for `left_out` have moved.
             work.bones = work.bones.take().map(|_| physics.exact_contacts(scene, PHYS_TOLERANCE));
@@ -336,18 +333,19 @@ mod tests {
     }
 
     #[test]
-    fn pieces_nobody_enters_or_that_hold_nobody_stay_as_they_are() {
+    fn pieces_nobody_enters_stay_and_a_piece_that_holds_nobody_keeps_its_category() {
         let (mut scene, i) = sofa_with_sitter();
         let before = scene.objects.clone();
         assert_eq!(fit(&mut scene, &RepairConfig::default()), 0);
         assert_eq!(scene.objects, before);
-        // The sofa in the sitter, but counted as holding nobody: `off_bodies`' work, not this step's.
+        // The sofa in its sitter, but nobody assigned to anything: reshaped out of the bones, a
+        // sofa still.
         push_forward(&mut scene, i, 0.08);
-        let moved = scene.objects.clone();
-        let holds = vec![false; scene.objects.len()];
-        let people = occupancy(&scene);
-        assert_eq!(fit_to_bodies(&mut scene, &people, &holds, &SimPhysics, &RepairConfig::default()), 0);
-        assert_eq!(scene.objects, moved);
+        let nobody = Occupancy::of(&scene, &RepairConfig::default().holding);
+        assert!(nobody.held_by(i).is_empty());
+        assert_eq!(fit_to_bodies(&mut scene, &nobody, &SimPhysics, &RepairConfig::default()), 1);
+        assert_eq!(scene.objects[i].category, before[i].category);
+        assert!(deepest_in(&scene, i) <= PHYS_TOLERANCE, "{}", deepest_in(&scene, i));
     }
 
     #[test]

@@ -14,7 +14,7 @@
 //! | `wide_seats` | a sofa whose people overhang its seat grows at that end | `wide_seats`, `gap` |
 //! | `fit_into_room` | a piece poking out of the floor plan is moved back or narrowed | `fit_into_room`, `narrowing`, `holding`, `gap` |
 //! | `off_bodies` | a piece holding nobody is pushed or narrowed out of the bones that enter it | `off_bodies`, `narrowing`, `gap` |
-//! | `fit_to_bodies` | a piece holding somebody that bones still enter is moved or reshaped a few centimetres at a time, its people kept supported | `fit_to_bodies`, `gap` |
+//! | `fit_to_bodies` | a piece that bones still enter is moved, turned or reshaped a few centimetres at a time, everybody supported kept supported (a piece that holds people may become another category that affords what they do) | `fit_to_bodies`, `gap` |
 //! | `left_out` | a piece holding nobody that people still pass through is left out | `left_out` |
 //! | `overlaps` | overlaps that survive are narrowed away, or the smaller piece goes | `narrowing`, `gap` |
 //!

@@ -78,7 +78,7 @@ pub enum StepReport {
         /// Pieces pushed or narrowed.
         pushed: usize,
     },
-    /// `fit_to_bodies`: pieces that hold people reshaped out of bones.
+    /// `fit_to_bodies`: pieces reshaped out of bones.
     FitToBodies {
         /// Pieces reshaped.
         fitted: usize,
@@ -199,7 +199,7 @@ pub struct RepairTotals {
     pub narrowed: usize,
     /// Pieces pushed or narrowed out of bones.
     pub pushed: usize,
-    /// Pieces that hold people reshaped out of bones.
+    /// Pieces reshaped out of bones.
     pub fitted: usize,
     /// Pieces left out.
     pub left_out: usize,
