@@ -344,6 +344,12 @@ pub struct FitToBodiesConfig {
     /// Where reshaping leaves bones in the piece, try it as each other category that affords what
     /// its people do, and take one that leaves none (default true).
     pub other_categories: bool,
+    /// How many other categories are searched: those whose starting shape (its sizes brought into
+    /// the category's real ones) the bones enter least (default 3).
+    pub categories_searched: usize,
+    /// Most shapes judged for one piece, its other categories included (default 1,500: a search
+    /// on the synthetic rooms takes a few hundred; this bounds a piece no shape clears).
+    pub max_tries: usize,
 }
 
 impl Default for FitToBodiesConfig {
@@ -354,6 +360,8 @@ impl Default for FitToBodiesConfig {
             margin: 0.005,
             min_gain: 0.001,
             other_categories: true,
+            categories_searched: 3,
+            max_tries: 1500,
         }
     }
 }
@@ -488,12 +496,17 @@ impl RepairConfig {
             ("settle.pathless_rounds", s.pathless_rounds),
             ("off_bodies.rounds", self.off_bodies.rounds),
             ("fit_to_bodies.rounds", self.fit_to_bodies.rounds),
+            ("fit_to_bodies.categories_searched", self.fit_to_bodies.categories_searched),
             ("fit_into_room.cuts", self.fit_into_room.cuts),
         ];
         for (field, n) in counts {
             if n > MAX_ROUNDS {
                 return Err((field.into(), format!("{n} rounds is more than {MAX_ROUNDS}")));
             }
+        }
+        let tries = self.fit_to_bodies.max_tries;
+        if tries > 100 * MAX_ROUNDS {
+            return Err(("fit_to_bodies.max_tries".into(), format!("{tries} is more than {}", 100 * MAX_ROUNDS)));
         }
         if self.steps.len() > 4 * StepName::ALL.len() {
             return Err((
@@ -544,6 +557,7 @@ mod tests {
         assert_eq!(field(r#"{"sofas_to_sleepers": {"off_middle": 0.03}}"#), "sofas_to_sleepers");
         assert_eq!(field(r#"{"fit_into_room": {"cuts": 5000}}"#), "fit_into_room.cuts");
         assert_eq!(field(r#"{"fit_to_bodies": {"margin": 0.03}}"#), "fit_to_bodies.margin");
+        assert_eq!(field(r#"{"fit_to_bodies": {"max_tries": 1000000}}"#), "fit_to_bodies.max_tries");
         assert_eq!(field(r#"{"fit_to_bodies": {"steps": [0.01, -1]}}"#), "fit_to_bodies.steps");
         assert_eq!(field(r#"{} x"#), ".");
         assert_eq!(field("{"), ".");

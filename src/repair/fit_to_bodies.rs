@@ -126,16 +126,27 @@ struct Search<'a> {
     tolerance: f64,
     /// The people the check found unsupported before the piece changed (nobody else may join them).
     unsupported: Vec<usize>,
+    /// Shapes judged so far, against [`FitToBodiesConfig::max_tries`](super::config::FitToBodiesConfig::max_tries).
+    tries: std::cell::Cell<usize>,
 }
 
 impl Search<'_> {
     /// How deep the bones are in `o` put in place of the piece, where everybody supported before
     /// stays supported; `None` otherwise.
     fn depth(&self, scene: &mut Scene, o: &Object) -> Option<f64> {
+        if self.spent() {
+            return None;
+        }
+        self.tries.set(self.tries.get() + 1);
         let kept = std::mem::replace(&mut scene.objects[self.i], o.clone());
         let fit = self.physics.piece_fit(scene, self.i, self.tolerance);
         scene.objects[self.i] = kept;
         fit.unsupported.iter().all(|h| self.unsupported.contains(h)).then_some(fit.depth)
+    }
+
+    /// Whether the piece's budget of shapes to judge is spent.
+    fn spent(&self) -> bool {
+        self.tries.get() >= self.config.fit_to_bodies.max_tries
     }
 
     /// The piece reshaped from `from` ([`changes`], the best change each round, while one helps)
@@ -146,7 +157,7 @@ impl Search<'_> {
         let room = Room::of(scene, &others, self.i, self.config.gap);
         let mut best = (from.clone(), depth);
         for _ in 0..cfg.rounds {
-            if best.1 <= 0.0 {
+            if best.1 <= 0.0 || self.spent() {
                 break;
             }
             let mut round_best: Option<(Object, f64)> = None;
@@ -183,13 +194,13 @@ fn as_category(o: &Object, category: Category) -> Object {
 
 /// Reshapes object `i` of `scene` while that takes bones out of it ([`changes`]); where that
 /// leaves bones in it, tries it as each other category that affords what its people do
-/// (`affords`; none when it holds nobody), reshaped the same way, and takes the one nearest its
-/// size that leaves no bone in it. Returns whether it changed.
+/// (`affords`; none when it holds nobody) — the few whose starting shape the bones enter least —
+/// reshaped the same way, and takes the one nearest its size that leaves no bone in it. Returns whether it changed.
 fn fit_piece(scene: &mut Scene, i: usize, affords: &[Action], physics: &dyn Physics, config: &RepairConfig) -> bool {
     let tolerance = PHYS_TOLERANCE - config.fit_to_bodies.margin;
     let given = scene.objects[i].clone();
     let start = physics.piece_fit(scene, i, tolerance);
-    let search = Search { i, physics, config, tolerance, unsupported: start.unsupported };
+    let search = Search { i, physics, config, tolerance, unsupported: start.unsupported, tries: Default::default() };
     let mut best = search.run(scene, given.clone(), start.depth);
     if best.1 > 0.0 && config.fit_to_bodies.other_categories && !affords.is_empty() {
         let others = scene
@@ -198,10 +209,17 @@ fn fit_piece(scene: &mut Scene, i: usize, affords: &[Action], physics: &dyn Phys
             .iter()
             .filter(|&&c| c != given.category && !c.is_hanging() && affords.iter().all(|&a| c.affords(a)));
         let size_change = |o: &Object| (0..3).map(|k| (o.size[k] - given.size[k]).abs()).sum::<f64>();
+        // The categories whose starting shape the bones enter least are searched.
+        let mut starts: Vec<(Object, f64)> = others
+            .filter_map(|&category| {
+                let from = as_category(&given, category);
+                search.depth(scene, &from).map(|d| (from, d))
+            })
+            .collect();
+        starts.sort_by(|a, b| a.1.total_cmp(&b.1));
+        starts.truncate(config.fit_to_bodies.categories_searched);
         let mut clean: Option<Object> = None;
-        for &category in others {
-            let from = as_category(&given, category);
-            let Some(depth) = search.depth(scene, &from) else { continue };
+        for (from, depth) in starts {
             let (o, d) = search.run(scene, from, depth);
             if d <= 0.0 && clean.as_ref().is_none_or(|c| size_change(&o) < size_change(c)) {
                 clean = Some(o);

@@ -6,11 +6,41 @@ use super::check::{CheckConfig, capsule_depth_beyond, support};
 use super::solids::{Owner, Solid, furniture_solids};
 use crate::furniture::template;
 use crate::physics::PieceFit;
-use crate::scene::Scene;
+use crate::scene::{Human, Scene};
 use glam::DVec3;
 
+/// How far (m) every joint may be from the last pose tested for a frame to count as that pose.
+pub const STILL: f64 = 0.01;
+
+/// Most poses of one person [`piece_fit`] tests: beyond, every k-th is tested for k of them (the
+/// shipped real clips have at most 451 frames; this bounds the largest inputs validation accepts).
+pub const MAX_POSES: usize = 1024;
+
+/// The poses of `human` a search needs to test, each with how many frames it stands for: a frame
+/// whose every joint is within [`STILL`] of the last pose kept counts as that pose (a person
+/// sitting still through 180 frames of motion capture is tested once); at most [`MAX_POSES`].
+fn distinct_poses(human: &Human) -> Vec<(Vec<DVec3>, f64)> {
+    let mut poses: Vec<(Vec<DVec3>, f64)> = Vec::new();
+    for f in 0..human.frames.len() {
+        let joints: Vec<DVec3> = human.frame(f).collect();
+        match poses.last_mut() {
+            Some((kept, weight)) if kept.iter().zip(&joints).all(|(a, b)| a.distance(*b) <= STILL) => *weight += 1.0,
+            _ => poses.push((joints, 1.0)),
+        }
+    }
+    if poses.len() > MAX_POSES {
+        let k = poses.len().div_ceil(MAX_POSES);
+        let total: f64 = poses.iter().map(|p| p.1).sum();
+        poses = poses.into_iter().step_by(k).collect();
+        let kept: f64 = poses.iter().map(|p| p.1).sum();
+        poses.iter_mut().for_each(|p| p.1 *= total / kept);
+    }
+    poses
+}
+
 /// How object `object` of `scene` meets the people: the sum over humans, frames and bones of how
-/// far each bone enters the piece's parts beyond `tolerance` (m; its deepest part), and the
+/// far each bone enters the piece's parts beyond `tolerance` (m; its deepest part; a frame within
+/// [`STILL`] of the last pose tested counts as that pose), and the
 /// people the check's support test fails (with the check's default distance).
 pub fn piece_fit(scene: &Scene, object: usize, tolerance: f64) -> PieceFit {
     let parts: Vec<Solid> =
@@ -21,8 +51,7 @@ pub fn piece_fit(scene: &Scene, object: usize, tolerance: f64) -> PieceFit {
     for human in &scene.humans {
         let sk = &human.skeleton;
         let reach = sk.bones.iter().map(|b| b.radius).fold(0.0, f64::max);
-        for f in 0..human.frames.len() {
-            let joints: Vec<DVec3> = human.frame(f).collect();
+        for (joints, weight) in distinct_poses(human) {
             let body_lo = joints.iter().fold(DVec3::splat(f64::INFINITY), |m, &p| m.min(p)) - reach;
             let body_hi = joints.iter().fold(DVec3::splat(f64::NEG_INFINITY), |m, &p| m.max(p)) + reach;
             if (body_lo.cmpgt(hi) | body_hi.cmplt(lo)).any() {
@@ -35,7 +64,7 @@ pub fn piece_fit(scene: &Scene, object: usize, tolerance: f64) -> PieceFit {
                     .filter_map(|s| capsule_depth_beyond(a, b, bone.radius, s, tolerance))
                     .fold(0.0, f64::max);
                 if deepest > 0.0 {
-                    depth += deepest - tolerance;
+                    depth += (deepest - tolerance) * weight;
                 }
             }
         }
