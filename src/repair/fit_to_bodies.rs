@@ -7,17 +7,18 @@
 //! it — a sitter's back in a loveseat's backrest and their shins in its front, a walker's hip
 //! through the end of the sofa they pass, a diner's thigh under a table top wedged between two
 //! others — neither mends it. This step searches, for each piece a bone still enters deeper than
-//! the check's tolerance, the small changes
-//! of its box: moving it along its own axes, moving one of its four sides or its top in or out, or
-//! turning it about its centre so that its corners move, by each of [`FitToBodiesConfig::steps`](super::config::FitToBodiesConfig::steps). It takes the change that takes the bones furthest out of
-//! it (the check's exact capsule depths, [`Physics::piece_fit`]) and repeats while some change
-//! helps. A change is allowed only where every person the check found supported stays supported
-//! (its own support test), the piece stays inside the floor plan and no further into any other
-//! piece, and each of its sizes stays within its category's real sizes (or no further outside
-//! them). Where no shape of a piece that holds people is clear of the bodies, the same search runs
-//! from each other category that affords what they do on it (a sofa whose sitter sits 30 cm from a
-//! wall becomes a stool); a piece that holds nobody keeps its category. One mechanism for every way
-//! a piece can meet a body; it knows nothing of what the piece or the body is.
+//! the check's tolerance, the small changes of its box: moving it along its own axes, moving one
+//! of its four sides or its top in or out, or turning it about its centre so that its corners
+//! move, by each of [`FitToBodiesConfig::steps`](super::config::FitToBodiesConfig::steps). It
+//! takes the change that takes the bones furthest out of it (the check's exact capsule depths,
+//! [`Physics::piece_fit`]) and repeats while some change helps. A change is allowed only where
+//! every person the check found supported stays supported (its own support test), the piece
+//! goes no further out of the floor plan or into any other piece, and each of its sizes stays
+//! within its category's real sizes (or no further outside them). Where no shape of a piece that
+//! holds people is clear of the bodies, the same search runs from each other category that affords
+//! what they do on it (a sofa whose sitter sits 30 cm from a wall becomes a stool); a piece that
+//! holds nobody keeps its category. One mechanism for every way a piece can meet a body; it knows
+//! nothing of what the piece or the body is.
 //!
 //! Nothing changes when no change helps; hanging pieces are left alone.
 
@@ -126,7 +127,8 @@ struct Search<'a> {
     tolerance: f64,
     /// The people the check found unsupported before the piece changed (nobody else may join them).
     unsupported: Vec<usize>,
-    /// Shapes judged so far, against [`FitToBodiesConfig::max_tries`](super::config::FitToBodiesConfig::max_tries).
+    /// Shapes judged so far, against
+    /// [`FitToBodiesConfig::max_tries`](super::config::FitToBodiesConfig::max_tries).
     tries: std::cell::Cell<usize>,
 }
 
@@ -195,7 +197,8 @@ fn as_category(o: &Object, category: Category) -> Object {
 /// Reshapes object `i` of `scene` while that takes bones out of it ([`changes`]); where that
 /// leaves bones in it, tries it as each other category that affords what its people do
 /// (`affords`; none when it holds nobody) — the few whose starting shape the bones enter least —
-/// reshaped the same way, and takes the one nearest its size that leaves no bone in it. Returns whether it changed.
+/// reshaped the same way, and takes the one nearest its size that leaves no bone in it. Returns
+/// whether it changed.
 fn fit_piece(scene: &mut Scene, i: usize, affords: &[Action], physics: &dyn Physics, config: &RepairConfig) -> bool {
     let tolerance = PHYS_TOLERANCE - config.fit_to_bodies.margin;
     let given = scene.objects[i].clone();
