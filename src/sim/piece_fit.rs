@@ -16,16 +16,17 @@ pub const STILL: f64 = 0.01;
 /// shipped real clips have at most 451 frames; this bounds the largest inputs validation accepts).
 pub const MAX_POSES: usize = 1024;
 
-/// The poses of `human` a search needs to test, each with how many frames it stands for: a frame
-/// whose every joint is within [`STILL`] of the last pose kept counts as that pose (a person
+/// The frames of `human` a search needs to test, each with how many frames it stands for: a frame
+/// whose every joint is within [`STILL`] of the last frame kept counts as that one (a person
 /// sitting still through 180 frames of motion capture is tested once); at most [`MAX_POSES`].
-fn distinct_poses(human: &Human) -> Vec<(Vec<DVec3>, f64)> {
-    let mut poses: Vec<(Vec<DVec3>, f64)> = Vec::new();
+fn distinct_poses(human: &Human) -> Vec<(usize, f64)> {
+    let mut poses: Vec<(usize, f64)> = Vec::new();
     for f in 0..human.frames.len() {
-        let joints: Vec<DVec3> = human.frame(f).collect();
         match poses.last_mut() {
-            Some((kept, weight)) if kept.iter().zip(&joints).all(|(a, b)| a.distance(*b) <= STILL) => *weight += 1.0,
-            _ => poses.push((joints, 1.0)),
+            Some((kept, weight)) if human.frame(*kept).zip(human.frame(f)).all(|(a, b)| a.distance(b) <= STILL) => {
+                *weight += 1.0
+            }
+            _ => poses.push((f, 1.0)),
         }
     }
     if poses.len() > MAX_POSES {
@@ -40,8 +41,8 @@ fn distinct_poses(human: &Human) -> Vec<(Vec<DVec3>, f64)> {
 
 /// How object `object` of `scene` meets the people: the sum over humans, frames and bones of how
 /// far each bone enters the piece's parts beyond `tolerance` (m; its deepest part; a frame within
-/// [`STILL`] of the last pose tested counts as that pose), and the
-/// people the check's support test fails (with the check's default distance).
+/// [`STILL`] of the last pose tested counts as that pose), and the people the check's support test
+/// fails (with the check's default distance).
 pub fn piece_fit(scene: &Scene, object: usize, tolerance: f64) -> PieceFit {
     let parts: Vec<Solid> =
         template(&scene.objects[object]).parts.into_iter().map(|p| Solid::new(Owner::Object(object), p.obox)).collect();
@@ -51,14 +52,14 @@ pub fn piece_fit(scene: &Scene, object: usize, tolerance: f64) -> PieceFit {
     for human in &scene.humans {
         let sk = &human.skeleton;
         let reach = sk.bones.iter().map(|b| b.radius).fold(0.0, f64::max);
-        for (joints, weight) in distinct_poses(human) {
-            let body_lo = joints.iter().fold(DVec3::splat(f64::INFINITY), |m, &p| m.min(p)) - reach;
-            let body_hi = joints.iter().fold(DVec3::splat(f64::NEG_INFINITY), |m, &p| m.max(p)) + reach;
+        for (f, weight) in distinct_poses(human) {
+            let body_lo = human.frame(f).fold(DVec3::splat(f64::INFINITY), DVec3::min) - reach;
+            let body_hi = human.frame(f).fold(DVec3::splat(f64::NEG_INFINITY), DVec3::max) + reach;
             if (body_lo.cmpgt(hi) | body_hi.cmplt(lo)).any() {
                 continue;
             }
             for bone in &sk.bones {
-                let (a, b) = (joints[bone.a], joints[bone.b]);
+                let (a, b) = (human.joint_at(f, bone.a), human.joint_at(f, bone.b));
                 let deepest = parts
                     .iter()
                     .filter_map(|s| capsule_depth_beyond(a, b, bone.radius, s, tolerance))
