@@ -4,7 +4,7 @@
 //! dining table scores well on every layout metric and passes the physics check; this is what
 //! sees it. It judges sizes only, not places.
 
-use crate::furniture::{REAL_SIZE_MARGIN, size_range};
+use crate::furniture::{REAL_SIZE_MARGIN, beyond_real};
 use crate::scene::{Category, Scene};
 use serde::{Deserialize, Serialize};
 
@@ -33,12 +33,6 @@ const AXES: [&str; 3] = ["width", "depth", "height"];
 /// A piece at the margin's edge is not beyond it: sampled sizes pass through single-precision
 /// tokens, which move them by up to a fraction of a millimetre (m).
 const DECODING_SLACK: f64 = 0.001;
-
-/// How far (m) `size` lies outside `category`'s real range on `axis` (0 inside it).
-pub fn beyond_real(category: Category, axis: usize, size: f64) -> f64 {
-    let (lo, hi) = size_range(category, axis);
-    (lo - size).max(size - hi).max(0.0)
-}
 
 /// The size statistics of `scenes`.
 pub fn size_report(scenes: &[Scene]) -> SizeReport {
@@ -69,6 +63,7 @@ pub fn size_report(scenes: &[Scene]) -> SizeReport {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::furniture::size_range;
     use crate::scene::{FloorPlan, Object, RoomType};
 
     #[test]

@@ -95,6 +95,12 @@ pub fn size_range(category: Category, axis: usize) -> (f64, f64) {
     if lo.is_finite() { (lo, hi) } else { (0.0, f64::INFINITY) }
 }
 
+/// How far (m) `size` lies outside `category`'s real range on `axis` (0 inside it).
+pub fn beyond_real(category: Category, axis: usize, size: f64) -> f64 {
+    let (lo, hi) = size_range(category, axis);
+    (lo - size).max(size - hi).max(0.0)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
