@@ -26,9 +26,9 @@ use super::config::{RepairConfig, StepName};
 use super::helpers::worst_offence;
 use super::occupancy::Occupancy;
 use super::pipeline::{RepairStep, StepReport, Workspace};
-use crate::furniture::size_range;
+use crate::furniture::{beyond_real, size_range};
 use crate::geom::{Polygon, intersection_volume};
-use crate::physics::{Owner, PHYS_TOLERANCE, Physics};
+use crate::physics::{EngineContact, Owner, PHYS_TOLERANCE, Physics};
 use crate::scene::{Action, Category, Object, Scene};
 use glam::DVec2;
 
@@ -80,8 +80,7 @@ fn changes(o: &Object, steps: &[f64]) -> Vec<Object> {
 /// `before`'s.
 fn real_enough(c: &Object, before: &Object) -> bool {
     (0..3).all(|k| {
-        let (lo, hi) = size_range(c.category, k);
-        let outside = |v: f64| (lo - v).max(v - hi).max(0.0);
+        let outside = |v: f64| beyond_real(c.category, k, v);
         c.size[k] > 0.05 && outside(c.size[k]) <= outside(before.size[k]) + 1e-9
     })
 }
@@ -236,10 +235,15 @@ fn fit_piece(scene: &mut Scene, i: usize, affords: &[Action], physics: &dyn Phys
     scene.objects[i] != given
 }
 
-/// Reshapes every standing piece that a bone enters deeper than the check's tolerance. Returns
-/// how many changed.
-fn fit_to_bodies(scene: &mut Scene, people: &Occupancy, physics: &dyn Physics, config: &RepairConfig) -> usize {
-    let contacts = physics.exact_contacts(scene, PHYS_TOLERANCE);
+/// Reshapes every standing piece that a bone of `contacts` (the scene's exact contacts deeper than
+/// the check's tolerance) enters. Returns how many changed.
+fn fit_to_bodies(
+    scene: &mut Scene,
+    contacts: &[EngineContact],
+    people: &Occupancy,
+    physics: &dyn Physics,
+    config: &RepairConfig,
+) -> usize {
     let mut entered: Vec<usize> = contacts
         .iter()
         .filter_map(|c| match c.owner {
@@ -268,11 +272,14 @@ impl RepairStep for FitToBodies {
 
     fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport {
         let physics = work.physics;
-        let fitted = fit_to_bodies(scene, &work.people, physics, config);
-        if fitted > 0 {
-            // The bones `off_bodies` left for `left_out` have moved.
-            work.bones = work.bones.take().map(|_| physics.exact_contacts(scene, PHYS_TOLERANCE));
-        }
+        // The bones `off_bodies` left, as `left_out` takes them.
+        let contacts = match work.bones.take() {
+            Some(bones) => bones,
+            None => physics.exact_contacts(scene, PHYS_TOLERANCE),
+        };
+        let fitted = fit_to_bodies(scene, &contacts, &work.people, physics, config);
+        // What `left_out` sees: the bones where the pieces are now.
+        work.bones = Some(if fitted > 0 { physics.exact_contacts(scene, PHYS_TOLERANCE) } else { contacts });
         StepReport::FitToBodies { fitted }
     }
 }
@@ -364,7 +371,8 @@ mod tests {
         push_forward(&mut scene, i, 0.08);
         let nobody = Occupancy::of(&scene, &RepairConfig::default().holding);
         assert!(nobody.held_by(i).is_empty());
-        assert_eq!(fit_to_bodies(&mut scene, &nobody, &SimPhysics, &RepairConfig::default()), 1);
+        let contacts = exact_contacts(&scene, PHYS_TOLERANCE);
+        assert_eq!(fit_to_bodies(&mut scene, &contacts, &nobody, &SimPhysics, &RepairConfig::default()), 1);
         assert_eq!(scene.objects[i].category, before[i].category);
         assert!(deepest_in(&scene, i) <= PHYS_TOLERANCE, "{}", deepest_in(&scene, i));
     }
