@@ -31,6 +31,7 @@ pub use people::{WALK_FPS, contact_pose, contact_probability, misplace, translat
 pub use rng::Rng;
 pub use rooms::{
     CheckedRoom, RoomRecord, furnish, generate_checked_room, generate_room, placed_against_wall, sample_categories,
+    stands_against_wall,
 };
 pub use stats::{DATASET_FORMAT, DatasetStats, SplitStats};
 pub use synth::{CLEAN_DRAWS, SynthConfig, split_of, synthesize, write_stats};

@@ -13,17 +13,10 @@
 
 use super::config::WallsConfig;
 use crate::data::layout::WALL_GAP;
-use crate::data::placed_against_wall;
+pub use crate::data::stands_against_wall;
 use crate::geom::{OBox, Polygon, yaw_facing};
-use crate::scene::{Category, Group};
 use glam::DVec2;
 use std::f64::consts::{FRAC_PI_2, PI};
-
-/// Whether the data stands pieces of `category` with their back against a wall (the synthetic
-/// layouts' rule, beds included; measured on the calibrated test splits: 100 % within 10 cm).
-pub fn stands_against_wall(category: Category) -> bool {
-    category.group() == Group::Bed || placed_against_wall(category)
-}
 
 /// The yaws and centre moves (world, m) that put `b`'s back `WALL_GAP` from a wall: the walls behind
 /// it and in front of it (turned half round) nearest first, then the walls beside it (turned a
@@ -100,6 +93,7 @@ fn wall_gap(center: DVec2, n: DVec2, reach: f64, across: f64, polygon: &Polygon,
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::Category;
     use glam::DVec3;
 
     fn room() -> Polygon {
