@@ -87,8 +87,9 @@ impl RepairFlags {
 /// Collision guidance flags (shared with `demo`).
 #[derive(Debug, Clone, Args)]
 pub struct GuidanceArgs {
-    /// Guidance terms during sampling: none, all (= mot,bound,obj), or a list of mot, bound, obj and
-    /// phys (physics feedback in the last steps). Repair after sampling is separate (--no-repair).
+    /// Guidance terms during sampling: none, all (= mot,bound,obj), or a list of mot, bound, obj,
+    /// phys (physics feedback in the last steps) and walls (J_b exact, 5 cm inside the walls, and
+    /// wall pieces drawn back to their wall). Repair after sampling is separate (--no-repair).
     #[arg(long, default_value = "all")]
     pub guidance: String,
     /// Step size γ of the guidance (default: the tuned value in docs/RESULTS.md).

@@ -7,7 +7,9 @@
 //! Guidance terms themselves, physics and metrics live elsewhere.
 
 mod adamw;
+pub mod against_walls;
 pub mod anchors;
+pub mod beyond_walls;
 pub mod bodies;
 pub mod checkpoint;
 mod config;

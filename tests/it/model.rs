@@ -499,7 +499,7 @@ fn bad_and_mismatched_checkpoints_give_one_error_line() {
         args.extend(guidance);
         shade_sim(&args)
     };
-    expect_error(guided(&["--guidance", "mot,walls"]), "--guidance: unknown guidance term \"walls\"");
+    expect_error(guided(&["--guidance", "mot,floor"]), "--guidance: unknown guidance term \"floor\"");
 
     // A guidance config asking for a billion gradient steps per step (it hung) or a negative step
     // bound (it was taken) is refused before any work, naming the file.

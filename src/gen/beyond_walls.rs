@@ -1,0 +1,245 @@
+//! J_b measured exactly (ours): how far each piece's footprint reaches past a margin inside the
+//! floor plan's walls, with gradients.
+//!
+//! SHADE's J_b is the soft area of outside pixels under a footprint
+//! ([`super::guidance::soft_coverage`]). Its sigmoid reaches a few pixels into the room, so it
+//! keeps pushing a piece that is already inside: guided beds, wardrobes and nightstands ended
+//! 8–16 cm from the wall they stand against (median 10 cm), where every piece of the training data
+//! stands exactly [`WALL_GAP`](crate::data::layout::WALL_GAP) (5 cm) from it. This term is zero
+//! for a piece at least `margin` inside every wall and grows with the depth beyond that:
+//!
+//! - each footprint corner: its depth past the line `margin` inside the walls (the floor plan's
+//!   signed distance, plus `margin`);
+//! - each reflex corner of the floor plan (an L-shaped room's inner corner, which can poke into a
+//!   footprint whose own corners are all inside): its depth inside the footprint plus `margin`.
+//!
+//! Each depth d counts as a Huber loss: d² / 2δ up to [`SOFT_DEPTH`] δ (10 cm), d − δ/2 beyond,
+//! so a piece far out is pushed at a steady rate and one that has just crossed the line gently.
+//! Counted linearly, a piece hovering at the line got the full push at each crossing, its step
+//! was cut to `max_step`, and the turn J_q asked for with it shrank in proportion (val bedrooms:
+//! beds left 5–15° off square, their sleepers inside them). The gradient moves, resizes and turns
+//! a piece: a piece turned against its wall has one corner past the line and is turned back flush
+//! (without the turn, beds under sleepers drifted off square again, J_c turning them to their
+//! sleepers), and moving alone is not enough for a bed the model drew longer than the floor
+//! between its sleeper and the wall.
+//! Not here: the weights and steps ([`super::guidance`]).
+
+use super::guidance::{GuidedObject, ObjectGradient};
+use crate::geom::Polygon;
+use glam::DVec2;
+
+/// Depth (m) up to which a depth counts quadratically (the Huber loss's δ).
+pub const SOFT_DEPTH: f64 = 0.1;
+
+/// The Huber loss of a depth (m) and its derivative; 0 for depths ≤ 0.
+fn huber(depth: f64) -> (f64, f64) {
+    if depth <= 0.0 {
+        (0.0, 0.0)
+    } else if depth < SOFT_DEPTH {
+        (depth * depth / (2.0 * SOFT_DEPTH), depth / SOFT_DEPTH)
+    } else {
+        (depth - SOFT_DEPTH * 0.5, 1.0)
+    }
+}
+
+/// Σ over pieces of the Huber losses of the depths (m) past `margin` inside the walls of `floor` (see the module
+/// header), with each piece's gradient (centre x and y, width and depth, yaw).
+pub fn depth_beyond_walls(objects: &[GuidedObject], floor: &Polygon, margin: f64) -> (f64, Vec<ObjectGradient>) {
+    let reflex = reflex_corners(floor);
+    let mut total = 0.0;
+    let mut grads = vec![[0.0; 7]; objects.len()];
+    for (o, g) in objects.iter().zip(&mut grads) {
+        total += corners_beyond(o, floor, margin, g);
+        total += walls_inside(o, &reflex, margin, g);
+    }
+    (total, grads)
+}
+
+/// The Huber losses of the footprint corners' depths past the margin line, their gradients added
+/// to `g`.
+fn corners_beyond(o: &GuidedObject, floor: &Polygon, margin: f64, g: &mut ObjectGradient) -> f64 {
+    let (s, c) = o.yaw.sin_cos();
+    let rotate = |v: DVec2| DVec2::new(c * v.x - s * v.y, s * v.x + c * v.y);
+    let turned = |v: DVec2| DVec2::new(-s * v.x - c * v.y, c * v.x - s * v.y);
+    let centre = o.center.truncate();
+    let (a, b) = (o.size.x * 0.5, o.size.y * 0.5);
+    let mut total = 0.0;
+    for (sx, sy) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+        let local = DVec2::new(sx * a, sy * b);
+        let p = centre + rotate(local);
+        let q = floor.nearest_boundary_point(p);
+        let inside = floor.contains(p);
+        let distance = p.distance(q);
+        let depth = margin + if inside { -distance } else { distance };
+        let (cost, slope) = huber(depth);
+        if slope <= 0.0 {
+            continue;
+        }
+        total += cost;
+        // The signed distance grows along the outward normal; on the boundary itself, the normal
+        // of the nearest edge.
+        let outward = slope
+            * if distance > 1e-12 {
+                if inside { (q - p) / distance } else { (p - q) / distance }
+            } else {
+                outward_normal_nearest(floor, p)
+            };
+        g[0] += outward.x;
+        g[1] += outward.y;
+        g[3] += outward.dot(rotate(DVec2::new(sx * 0.5, 0.0)));
+        g[4] += outward.dot(rotate(DVec2::new(0.0, sy * 0.5)));
+        g[6] += outward.dot(turned(local));
+    }
+    total
+}
+
+/// The outward unit normal of the edge of `floor` nearest `p`.
+fn outward_normal_nearest(floor: &Polygon, p: DVec2) -> DVec2 {
+    let turn = floor.signed_area().signum();
+    floor
+        .edges()
+        .map(|(a, b)| {
+            let t = ((p - a).dot(b - a) / (b - a).length_squared().max(1e-18)).clamp(0.0, 1.0);
+            (p.distance(a + (b - a) * t), -(b - a).normalize_or_zero().perp() * turn)
+        })
+        .min_by(|x, y| x.0.total_cmp(&y.0))
+        .map_or(DVec2::ZERO, |(_, n)| n)
+}
+
+/// The Huber losses of the reflex floor-plan corners' depths inside the footprint plus the
+/// margin, their gradients
+/// (central differences of the exact value) added to `g`.
+fn walls_inside(o: &GuidedObject, reflex: &[DVec2], margin: f64, g: &mut ObjectGradient) -> f64 {
+    let cost =
+        |o: &GuidedObject| reflex.iter().map(|&v| huber(margin - footprint_signed_distance(o, v)).0).sum::<f64>();
+    let total = cost(o);
+    if total <= 0.0 {
+        return 0.0;
+    }
+    let h = 1e-5;
+    for k in [0, 1, 3, 4] {
+        let at = |d: f64| {
+            let mut p = *o;
+            match k {
+                0 | 1 => p.center[k] += d,
+                _ => p.size[k - 3] += d,
+            }
+            cost(&p)
+        };
+        g[k] += (at(h) - at(-h)) / (2.0 * h);
+    }
+    total
+}
+
+/// Signed distance (m) from `p` to the footprint of `o`: negative inside.
+fn footprint_signed_distance(o: &GuidedObject, p: DVec2) -> f64 {
+    let (s, c) = o.yaw.sin_cos();
+    let d = p - o.center.truncate();
+    let q = DVec2::new(c * d.x + s * d.y, -s * d.x + c * d.y);
+    let (ex, ey) = (q.x.abs() - o.size.x * 0.5, q.y.abs() - o.size.y * 0.5);
+    if ex > 0.0 || ey > 0.0 { ex.max(0.0).hypot(ey.max(0.0)) } else { ex.max(ey) }
+}
+
+/// The corners of `floor` whose inside angle exceeds a half turn.
+fn reflex_corners(floor: &Polygon) -> Vec<DVec2> {
+    let n = floor.points.len();
+    let turn = floor.signed_area().signum();
+    (0..n)
+        .filter_map(|i| {
+            let (prev, at, next) = (floor.points[(i + n - 1) % n], floor.points[i], floor.points[(i + 1) % n]);
+            ((at - prev).perp_dot(next - at) * turn < 0.0).then_some(at)
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Category;
+    use glam::DVec3;
+
+    fn piece(x: f64, y: f64, w: f64, d: f64, yaw: f64) -> GuidedObject {
+        GuidedObject {
+            center: DVec3::new(x, y, 0.4),
+            size: DVec3::new(w, d, 0.8),
+            yaw,
+            hanging: false,
+            category: Category::Wardrobe,
+        }
+    }
+
+    fn square_room() -> Polygon {
+        Polygon { points: vec![DVec2::new(0.0, 0.0), DVec2::new(4.0, 0.0), DVec2::new(4.0, 4.0), DVec2::new(0.0, 4.0)] }
+    }
+
+    /// An L: the 4 × 4 square without its top-right 2 × 2 quarter; (2, 2) is its reflex corner.
+    fn l_room() -> Polygon {
+        let p = [(0.0, 0.0), (4.0, 0.0), (4.0, 2.0), (2.0, 2.0), (2.0, 4.0), (0.0, 4.0)];
+        Polygon { points: p.iter().map(|&(x, y)| DVec2::new(x, y)).collect() }
+    }
+
+    #[test]
+    fn a_piece_at_the_margin_costs_nothing_and_one_past_it_costs_its_corners_depths_huber_losses() {
+        let room = square_room();
+        // A 1 × 0.6 piece with its back 5.1 cm from the wall y = 0: nothing.
+        let at = piece(2.0, 0.351, 1.0, 0.6, 0.0);
+        assert_eq!(depth_beyond_walls(&[at], &room, 0.05).0, 0.0);
+        // 2 cm further back: two corners, each 2 cm past the line: 2 × 0.02² / 0.2.
+        let (j, g) = depth_beyond_walls(&[piece(2.0, 0.33, 1.0, 0.6, 0.0)], &room, 0.05);
+        assert!((j - 0.004).abs() < 1e-12, "{j}");
+        // Moving it into the room (+y) lowers J at rate 2 × 0.02 / 0.1; deepening it raises J at
+        // half that rate.
+        assert!((g[0][1] + 0.4).abs() < 1e-9 && g[0][0].abs() < 1e-9, "{:?}", g[0]);
+        assert!((g[0][4] - 0.2).abs() < 1e-9 && g[0][3].abs() < 1e-9, "{:?}", g[0]);
+        // 10 cm through the wall: the corners are 15 cm past the line, beyond δ: 2 × (0.15 − 0.05).
+        let (j, g) = depth_beyond_walls(&[piece(2.0, 0.2, 1.0, 0.6, 0.0)], &room, 0.05);
+        assert!((j - 0.20).abs() < 1e-12 && (g[0][1] + 2.0).abs() < 1e-9, "{j} {:?}", g[0]);
+        // Its back exactly on the wall: pushed out along the wall's normal.
+        let (j, g) = depth_beyond_walls(&[piece(2.0, 0.3, 1.0, 0.6, 0.0)], &room, 0.05);
+        assert!((j - 0.025).abs() < 1e-12 && (g[0][1] + 1.0).abs() < 1e-9, "{j} {:?}", g[0]);
+    }
+
+    #[test]
+    fn gradients_match_finite_differences() {
+        let room = l_room();
+        // Turned, across the reflex corner and past the wall x = 0.
+        let objects = [piece(2.1, 2.3, 1.2, 0.7, 0.3), piece(0.3, 1.0, 0.9, 0.5, -0.2)];
+        let (_, g) = depth_beyond_walls(&objects, &room, 0.05);
+        for i in 0..objects.len() {
+            // Piece 0 is across the inner corner, whose term does not turn it.
+            for k in if i == 0 { vec![0, 1, 3, 4] } else { vec![0, 1, 3, 4, 6] } {
+                let at = |d: f64| {
+                    let mut o = objects;
+                    match k {
+                        0 | 1 => o[i].center[k] += d,
+                        3 | 4 => o[i].size[k - 3] += d,
+                        _ => o[i].yaw += d,
+                    }
+                    depth_beyond_walls(&o, &room, 0.05).0
+                };
+                let fd = (at(1e-6) - at(-1e-6)) / 2e-6;
+                assert!(
+                    (fd - g[i][k]).abs() < 1e-4 * (1.0 + fd.abs()),
+                    "piece {i}, k {k}: fd {fd}, analytic {}",
+                    g[i][k]
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn the_inner_corner_of_an_l_counts_when_it_pokes_into_a_piece() {
+        let room = l_room();
+        assert_eq!(reflex_corners(&room), vec![DVec2::new(2.0, 2.0)]);
+        // A 1 × 1 piece centred at (1.6, 1.6), the reflex corner 0.1 m inside it: that depth plus
+        // the margin, 0.15 m, beyond δ.
+        let o = piece(1.6, 1.6, 1.0, 1.0, 0.0);
+        let mut g = [0.0; 7];
+        assert!((walls_inside(&o, &reflex_corners(&room), 0.05, &mut g) - 0.10).abs() < 1e-12);
+        // Moved away from the corner (−x), the piece loses that depth.
+        assert!(g[0] > 0.0 && g[1] > 0.0, "{g:?}");
+        // Clear of it by 5 cm in both directions: nothing.
+        let clear = piece(1.4, 1.4, 1.0, 1.0, 0.0);
+        assert_eq!(depth_beyond_walls(&[clear], &room, 0.05).0, 0.0);
+    }
+}
