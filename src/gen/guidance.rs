@@ -250,9 +250,10 @@ impl GuidanceConfig {
     /// costs one evaluation of J per scene).
     pub const MAX_ITERATIONS: usize = 1000;
 
-    /// Why the configuration cannot guide, if it cannot: a weight, γ or `phys` that is negative or
-    /// not finite, `anchored_mobility` outside 0..1, `max_step` not a positive distance,
-    /// `real_sizes` not a distance ≥ 0, `every` 0, or `iterations` above [`MAX_ITERATIONS`](Self::MAX_ITERATIONS).
+    /// Why the configuration cannot guide, if it cannot: a weight, γ, `phys` or
+    /// `against_wall_reach` that is negative or not finite, `anchored_mobility` outside 0..1,
+    /// `max_step` not a positive distance, `bound_margin` or `real_sizes` not a distance ≥ 0,
+    /// `every` 0, or `iterations` above [`MAX_ITERATIONS`](Self::MAX_ITERATIONS).
     pub fn problem(&self) -> Option<String> {
         let weights = [
             ("motion", self.motion),
