@@ -39,10 +39,11 @@ pub fn gap_to_wall_behind(objects: &[GuidedObject], floor: &Polygon, reach: f64)
         if !stands_against_wall(o.category) {
             continue;
         }
-        let (s, c) = o.yaw.sin_cos();
-        let rotate = |v: DVec2| DVec2::new(c * v.x - s * v.y, s * v.x + c * v.y);
-        let turned = |v: DVec2| DVec2::new(-s * v.x - c * v.y, c * v.x - s * v.y);
-        let back = DVec2::new(s, -c);
+        // A corner at local (x, y) stands at centre + x·ax + y·ay; turning moves it along x·ay − y·ax.
+        let (ax, ay) = o.obox().axes();
+        let rotate = |v: DVec2| ax * v.x + ay * v.y;
+        let turned = |v: DVec2| ay * v.x - ax * v.y;
+        let back = -ay;
         for side in [-1.0, 1.0] {
             let local = DVec2::new(side * o.size.x * 0.5, -o.size.y * 0.5);
             let corner = o.center.truncate() + rotate(local);

@@ -25,7 +25,7 @@
 //! Not here: the weights and steps ([`super::guidance`]).
 
 use super::guidance::{GuidedObject, ObjectGradient};
-use crate::geom::Polygon;
+use crate::geom::{Polygon, point_segment_distance};
 use glam::DVec2;
 
 /// Depth (m) up to which a depth counts quadratically (the Huber loss's δ).
@@ -58,9 +58,10 @@ pub fn depth_beyond_walls(objects: &[GuidedObject], floor: &Polygon, margin: f64
 /// The Huber losses of the footprint corners' depths past the margin line, their gradients added
 /// to `g`.
 fn corners_beyond(o: &GuidedObject, floor: &Polygon, margin: f64, g: &mut ObjectGradient) -> f64 {
-    let (s, c) = o.yaw.sin_cos();
-    let rotate = |v: DVec2| DVec2::new(c * v.x - s * v.y, s * v.x + c * v.y);
-    let turned = |v: DVec2| DVec2::new(-s * v.x - c * v.y, c * v.x - s * v.y);
+    // A corner at local (x, y) stands at centre + x·ax + y·ay; turning moves it along x·ay − y·ax.
+    let (ax, ay) = o.obox().axes();
+    let rotate = |v: DVec2| ax * v.x + ay * v.y;
+    let turned = |v: DVec2| ay * v.x - ax * v.y;
     let centre = o.center.truncate();
     let (a, b) = (o.size.x * 0.5, o.size.y * 0.5);
     let mut total = 0.0;
@@ -93,15 +94,11 @@ fn corners_beyond(o: &GuidedObject, floor: &Polygon, margin: f64, g: &mut Object
     total
 }
 
-/// The outward unit normal of the edge of `floor` nearest `p`.
+/// The outward unit normal of the wall of `floor` nearest `p`.
 fn outward_normal_nearest(floor: &Polygon, p: DVec2) -> DVec2 {
-    let turn = floor.signed_area().signum();
     floor
-        .edges()
-        .map(|(a, b)| {
-            let t = ((p - a).dot(b - a) / (b - a).length_squared().max(1e-18)).clamp(0.0, 1.0);
-            (p.distance(a + (b - a) * t), -(b - a).normalize_or_zero().perp() * turn)
-        })
+        .walls()
+        .map(|w| (point_segment_distance(p, w.start, w.start + w.along * w.length), -w.inward))
         .min_by(|x, y| x.0.total_cmp(&y.0))
         .map_or(DVec2::ZERO, |(_, n)| n)
 }
@@ -111,7 +108,7 @@ fn outward_normal_nearest(floor: &Polygon, p: DVec2) -> DVec2 {
 /// (central differences of the exact value) added to `g`.
 fn walls_inside(o: &GuidedObject, reflex: &[DVec2], margin: f64, g: &mut ObjectGradient) -> f64 {
     let cost =
-        |o: &GuidedObject| reflex.iter().map(|&v| huber(margin - footprint_signed_distance(o, v)).0).sum::<f64>();
+        |o: &GuidedObject| reflex.iter().map(|&v| huber(margin - o.obox().footprint_signed_distance(v)).0).sum::<f64>();
     let total = cost(o);
     if total <= 0.0 {
         return 0.0;
@@ -129,15 +126,6 @@ fn walls_inside(o: &GuidedObject, reflex: &[DVec2], margin: f64, g: &mut ObjectG
         g[k] += (at(h) - at(-h)) / (2.0 * h);
     }
     total
-}
-
-/// Signed distance (m) from `p` to the footprint of `o`: negative inside.
-fn footprint_signed_distance(o: &GuidedObject, p: DVec2) -> f64 {
-    let (s, c) = o.yaw.sin_cos();
-    let d = p - o.center.truncate();
-    let q = DVec2::new(c * d.x + s * d.y, -s * d.x + c * d.y);
-    let (ex, ey) = (q.x.abs() - o.size.x * 0.5, q.y.abs() - o.size.y * 0.5);
-    if ex > 0.0 || ey > 0.0 { ex.max(0.0).hypot(ey.max(0.0)) } else { ex.max(ey) }
 }
 
 /// The corners of `floor` whose inside angle exceeds a half turn.
