@@ -10,6 +10,11 @@
 //!
 //! - each footprint corner: its depth past the line `margin` inside the walls (the floor plan's
 //!   signed distance, plus `margin`);
+//! - the footprint's centre, the same way: a piece that fills a notch of a U- or L-shaped floor
+//!   plan has its four corners just beyond the notch's walls, centimetres deep, while the whole
+//!   piece is outside (val dining rooms: an L-shaped sofa 3.6 m wide in a 3.65 m notch); its
+//!   centre is a metre deep. For a piece inside the room the centre is half the piece's depth
+//!   inside its corners, so it adds nothing;
 //! - each reflex corner of the floor plan (an L-shaped room's inner corner, which can poke into a
 //!   footprint whose own corners are all inside): its depth inside the footprint plus `margin`.
 //!
@@ -32,7 +37,7 @@ use glam::DVec2;
 pub const SOFT_DEPTH: f64 = 0.1;
 
 /// The Huber loss of a depth (m) and its derivative; 0 for depths ≤ 0.
-fn huber(depth: f64) -> (f64, f64) {
+pub(super) fn huber(depth: f64) -> (f64, f64) {
     if depth <= 0.0 {
         (0.0, 0.0)
     } else if depth < SOFT_DEPTH {
@@ -55,8 +60,8 @@ pub fn depth_beyond_walls(objects: &[GuidedObject], floor: &Polygon, margin: f64
     (total, grads)
 }
 
-/// The Huber losses of the footprint corners' depths past the margin line, their gradients added
-/// to `g`.
+/// The Huber losses of the footprint corners' and centre's depths past the margin line, their
+/// gradients added to `g` (the centre's moves the piece only).
 fn corners_beyond(o: &GuidedObject, floor: &Polygon, margin: f64, g: &mut ObjectGradient) -> f64 {
     // A corner at local (x, y) stands at centre + x·ax + y·ay; turning moves it along x·ay − y·ax.
     let (ax, ay) = o.obox().axes();
@@ -65,7 +70,7 @@ fn corners_beyond(o: &GuidedObject, floor: &Polygon, margin: f64, g: &mut Object
     let centre = o.center.truncate();
     let (a, b) = (o.size.x * 0.5, o.size.y * 0.5);
     let mut total = 0.0;
-    for (sx, sy) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+    for (sx, sy) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0), (0.0, 0.0)] {
         let local = DVec2::new(sx * a, sy * b);
         let p = centre + rotate(local);
         let q = floor.nearest_boundary_point(p);
@@ -185,6 +190,21 @@ mod tests {
         // Its back exactly on the wall: pushed out along the wall's normal.
         let (j, g) = depth_beyond_walls(&[piece(2.0, 0.3, 1.0, 0.6, 0.0)], &room, 0.05);
         assert!((j - 0.025).abs() < 1e-12 && (g[0][1] + 1.0).abs() < 1e-9, "{j} {:?}", g[0]);
+    }
+
+    #[test]
+    fn a_piece_filling_a_notch_is_pushed_out_of_it_by_its_centre() {
+        // A U: the 6 × 4 rectangle without x 2–4, y 2–4. A 1.96 × 1.3 piece in the notch, its
+        // corners 2 cm past the notch's side walls.
+        let p = [(0.0, 0.0), (6.0, 0.0), (6.0, 4.0), (4.0, 4.0), (4.0, 2.0), (2.0, 2.0), (2.0, 4.0), (0.0, 4.0)];
+        let room = Polygon { points: p.iter().map(|&(x, y)| DVec2::new(x, y)).collect() };
+        let (j, g) = depth_beyond_walls(&[piece(3.0, 2.9, 1.96, 1.3, 0.0)], &room, 0.05);
+        // Each corner 0.02 + 0.05 past the line (quadratic); the centre 0.9 m from the notch's
+        // bottom edge (y = 2), plus the margin, beyond δ: 0.95 − 0.05.
+        let corner = 0.07 * 0.07 / 0.2;
+        assert!((j - (4.0 * corner + 0.9)).abs() < 1e-9, "{j}");
+        // The corners' pushes cancel; the centre pulls the piece down, into the room, at rate 1.
+        assert!((g[0][1] - 1.0).abs() < 1e-9 && g[0][0].abs() < 1e-9, "{:?}", g[0]);
     }
 
     #[test]
