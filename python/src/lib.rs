@@ -215,7 +215,7 @@ fn shipped_generator(room: RoomType) -> PyResult<Arc<Generator>> {
 
 /// Furnished layouts for `input` (a Scene, path or dict; or a list of them): sampled with each
 /// room type's shipped model (or the model folder `model`), guided by `guidance` ("all", "none"
-/// or a list of mot, bound, obj, phys, walls), repaired unless `repair` is False (a path: a
+/// or a list of mot, bound, obj, phys, exact), repaired unless `repair` is False (a path: a
 /// repair config file), and with `require_clean` resampled with new seeds (up to `attempts` rounds) until
 /// `samples` layouts pass `check`. Returns the layouts kept (a list per input for a list), fewer
 /// than `samples` (maybe none) where `require_clean` found no more. The same arguments give the

@@ -11,6 +11,7 @@ pub mod against_walls;
 pub mod anchors;
 pub mod beyond_walls;
 pub mod bodies;
+pub mod boxes_uncovered;
 pub mod checkpoint;
 mod config;
 pub mod count_prior;
