@@ -181,7 +181,7 @@ impl GuidanceConfig {
     /// pieces stand: J_b exact, 5 cm inside the walls, J_w drawing wall pieces back to their wall
     /// (weight 0.2), J_c exact (zero once a piece covers its contact box) and J_o keeping pieces
     /// 3 cm apart. The model's own layouts look far more like the data's (val SCA alone 0.98 /
-    /// 0.88 / 0.93 → 0.73 / 0.74 / 0.80, Col_obj alone 0.019 / 0.047 / 0.031 → 0.003 / 0.023 /
+    /// 0.89 / 0.94 → 0.73 / 0.75 / 0.81, Col_obj alone 0.015 / 0.049 / 0.031 → 0.003 / 0.021 /
     /// 0.014), but one or two more val rooms in a hundred fail after repair in living and dining
     /// rooms, so it is not the default (docs/RESULTS.md, "Pieces at their walls" and "Terms that
     /// let go at the data's targets").
