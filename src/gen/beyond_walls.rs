@@ -13,8 +13,8 @@
 //! - the footprint's centre, the same way: a piece that fills a notch of a U- or L-shaped floor
 //!   plan has its four corners just beyond the notch's walls, centimetres deep, while the whole
 //!   piece is outside (val dining rooms: an L-shaped sofa 3.6 m wide in a 3.65 m notch); its
-//!   centre is a metre deep. For a piece inside the room the centre is half the piece's depth
-//!   inside its corners, so it adds nothing;
+//!   centre is a metre deep. For a piece wholly inside the room the centre lies half the piece's
+//!   smaller side further in than its edges, so it adds nothing;
 //! - each reflex corner of the floor plan (an L-shaped room's inner corner, which can poke into a
 //!   footprint whose own corners are all inside): its depth inside the footprint plus `margin`.
 //!
