@@ -118,17 +118,8 @@ fn walls_inside(o: &GuidedObject, reflex: &[DVec2], margin: f64, g: &mut ObjectG
     if total <= 0.0 {
         return 0.0;
     }
-    let h = 1e-5;
-    for k in [0, 1, 3, 4] {
-        let at = |d: f64| {
-            let mut p = *o;
-            match k {
-                0 | 1 => p.center[k] += d,
-                _ => p.size[k - 3] += d,
-            }
-            cost(&p)
-        };
-        g[k] += (at(h) - at(-h)) / (2.0 * h);
+    for (g, d) in g.iter_mut().zip(o.central_differences(&[0, 1, 3, 4], 1e-5, cost)) {
+        *g += d;
     }
     total
 }

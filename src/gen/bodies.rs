@@ -348,12 +348,7 @@ fn central_differences(o: &GuidedObject, cost: impl Fn(&GuidedObject) -> f64) ->
     for k in [0, 1, 3, 4, 5, 6] {
         let h = 1e-3;
         let at = |delta: f64| {
-            let mut moved = *o;
-            match k {
-                0 | 1 => moved.center[k] += delta,
-                3..=5 => moved.size[k - 3] = (moved.size[k - 3] + delta).max(1e-3),
-                _ => moved.yaw += delta,
-            }
+            let mut moved = o.nudged(k, delta);
             if k == 5 {
                 moved.center.z += delta * 0.5;
             }

@@ -40,19 +40,7 @@ pub fn box_corners_outside(
             continue;
         }
         total += value;
-        let h = 1e-5;
-        for k in [0, 1, 3, 4, 6] {
-            let at = |d: f64| {
-                let mut p = *o;
-                match k {
-                    0 | 1 => p.center[k] += d,
-                    3 | 4 => p.size[k - 3] += d,
-                    _ => p.yaw += d,
-                }
-                cost(&p)
-            };
-            g[k] += (at(h) - at(-h)) / (2.0 * h);
-        }
+        *g = o.central_differences(&[0, 1, 3, 4, 6], 1e-5, cost);
     }
     (total, grads)
 }

@@ -418,6 +418,28 @@ impl GuidedObject {
     pub fn obox(&self) -> OBox {
         OBox::new(self.center, self.size, self.yaw)
     }
+
+    /// The same piece with attribute `k` of an [`ObjectGradient`] (centre x, y, z; width, depth,
+    /// height; yaw) changed by `d`, a size kept at 1 mm at least.
+    pub fn nudged(&self, k: usize, d: f64) -> GuidedObject {
+        let mut o = *self;
+        match k {
+            0..=2 => o.center[k] += d,
+            3..=5 => o.size[k - 3] = (o.size[k - 3] + d).max(1e-3),
+            _ => o.yaw += d,
+        }
+        o
+    }
+
+    /// The central differences (step `h`) of `cost` with respect to the attributes `ks` (the
+    /// others 0), for the terms whose exact value has no handier derivative.
+    pub fn central_differences(&self, ks: &[usize], h: f64, cost: impl Fn(&GuidedObject) -> f64) -> ObjectGradient {
+        let mut g = [0.0; 7];
+        for &k in ks {
+            g[k] = (cost(&self.nudged(k, h)) - cost(&self.nudged(k, -h))) / (2.0 * h);
+        }
+        g
+    }
 }
 
 /// Gradient with respect to (cx, cy, cz, w, d, h, yaw).
@@ -569,18 +591,10 @@ pub fn pairwise_overlap(objects: &[GuidedObject], overlap: Overlap, gap: f64) ->
             }
             total += value;
             for (me, other) in [(i, j), (j, i)] {
-                for (k, g) in grads[me].iter_mut().enumerate() {
-                    let h = 1e-3;
-                    let at = |delta: f64| {
-                        let mut o = objects[me];
-                        match k {
-                            0..=2 => o.center[k] += delta,
-                            3..=5 => o.size[k - 3] = (o.size[k - 3] + delta).max(1e-3),
-                            _ => o.yaw += delta,
-                        }
-                        overlap.of(&o.obox(), &boxes[other])
-                    };
-                    *g += (at(h) - at(-h)) / (2.0 * h);
+                let d = objects[me]
+                    .central_differences(&[0, 1, 2, 3, 4, 5, 6], 1e-3, |o| overlap.of(&o.obox(), &boxes[other]));
+                for (g, d) in grads[me].iter_mut().zip(d) {
+                    *g += d;
                 }
             }
         }
