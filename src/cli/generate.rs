@@ -89,8 +89,9 @@ impl RepairFlags {
 pub struct GuidanceArgs {
     /// Guidance terms during sampling: none, all (= mot,bound,obj), or a list of mot, bound, obj,
     /// phys (physics feedback in the last steps) and exact (the terms measured exactly: pieces 5 cm
-    /// inside the walls, wall pieces drawn back to their wall, contact boxes just covered, pieces 3
-    /// cm apart; `walls` is its older name). Repair after sampling is separate (--no-repair).
+    /// inside the walls, wall pieces drawn back to their wall, contact boxes just covered; `walls`
+    /// is its older name). Pieces are kept 3 cm apart. Repair after sampling is separate
+    /// (--no-repair).
     #[arg(long, default_value = "all")]
     pub guidance: String,
     /// Step size γ of the guidance (default: the tuned value in docs/RESULTS.md).

@@ -66,7 +66,8 @@ pub struct GuidanceConfig {
     #[serde(default)]
     pub overlap: Overlap,
     /// The gap (m) J_o keeps between pieces' footprints: each footprint is grown by half of it on
-    /// every side before the overlap is measured (0, the default: touching is enough).
+    /// every side before the overlap is measured (3 cm in `all()`, as the data's pieces stand; 0 in
+    /// `shade()` and in files without the field: touching is enough).
     #[serde(default)]
     pub object_gap: f64,
     /// Largest distance (m) a piece's centre moves in one gradient step; `None` = unbounded.
@@ -142,8 +143,8 @@ pub struct GuidanceConfig {
 impl GuidanceConfig {
     /// All three spatial terms with the default settings, chosen on the val splits
     /// (docs/RESULTS.md, "Guidance that converges", "Bodies and support" and "Bones, not surface
-    /// points", and "J_b weighted 8"): J_b weighted 8, J_o
-    /// as the share of the smaller piece, J_c 4 holding the pieces under people (which otherwise
+    /// points", "J_b weighted 8" and "J_o's gap, the default"): J_b weighted 8, J_o
+    /// as the share of the smaller piece with footprints kept 3 cm apart, J_c 4 holding the pieces under people (which otherwise
     /// move like any piece), J_p and J_s 1 keeping them out of the bodies and up against them, and
     /// J_q 1 turning pieces square to the walls, and in each of the last 20 steps up to 128 gradient
     /// steps of at most 3 cm; pieces in anchored slots overlapping by more than a quarter of the
@@ -157,7 +158,7 @@ impl GuidanceConfig {
             against_wall_reach: Self::default_against_wall_reach(),
             object: 1.0,
             overlap: Overlap::Smaller,
-            object_gap: 0.0,
+            object_gap: 0.03,
             max_step: Some(0.03),
             iterations: 128,
             contact: 4.0,
@@ -179,18 +180,16 @@ impl GuidanceConfig {
 
     /// [`all`](Self::all) with every spatial term measured so that it lets go where the data's
     /// pieces stand: J_b exact, 5 cm inside the walls, J_w drawing wall pieces back to their wall
-    /// (weight 0.2), J_c exact (zero once a piece covers its contact box) and J_o keeping pieces
-    /// 3 cm apart. The model's own layouts look far more like the data's (val SCA alone 0.98 /
-    /// 0.89 / 0.94 → 0.73 / 0.75 / 0.81, Col_obj alone 0.015 / 0.049 / 0.031 → 0.003 / 0.021 /
-    /// 0.014), but one or two more val rooms in a hundred fail after repair in living and dining
-    /// rooms, so it is not the default (docs/RESULTS.md, "Pieces at their walls" and "Terms that
+    /// (weight 0.2) and J_c exact (zero once a piece covers its contact box); J_o keeps pieces
+    /// 3 cm apart as in `all()`. The model's own layouts look far more like the data's (val SCA
+    /// alone 0.98 / 0.89 / 0.94 → 0.73 / 0.75 / 0.81), but one or two more val rooms in a hundred
+    /// fail after repair in living and dining rooms, so it is not the default (docs/RESULTS.md, "Pieces at their walls" and "Terms that
     /// let go at the data's targets").
     pub fn exact() -> GuidanceConfig {
         GuidanceConfig {
             bound_margin: Some(crate::data::layout::WALL_GAP),
             against_wall: 0.2,
             contact_margin: Some(0.0),
-            object_gap: 0.03,
             ..Self::all()
         }
     }
@@ -203,6 +202,7 @@ impl GuidanceConfig {
         GuidanceConfig {
             bound: 1.0,
             overlap: Overlap::Iou,
+            object_gap: 0.0,
             max_step: None,
             iterations: 1,
             contact: 0.0,
@@ -257,7 +257,7 @@ impl GuidanceConfig {
                 "exact" | "walls" => {
                     let e = Self::exact();
                     (cfg.bound_margin, cfg.against_wall) = (e.bound_margin, e.against_wall);
-                    (cfg.contact_margin, cfg.object_gap) = (e.contact_margin, e.object_gap);
+                    cfg.contact_margin = e.contact_margin;
                 }
                 other => {
                     return Err(format!(
@@ -1241,8 +1241,9 @@ mod tests {
         let e = GuidanceConfig::exact();
         assert_eq!((e.bound_margin, e.against_wall), (Some(crate::data::layout::WALL_GAP), 0.2));
         assert_eq!((e.contact_margin, e.object_gap), (Some(0.0), 0.03));
-        let back = GuidanceConfig { bound_margin: None, against_wall: 0.0, contact_margin: None, object_gap: 0.0, ..e };
+        let back = GuidanceConfig { bound_margin: None, against_wall: 0.0, contact_margin: None, ..e };
         assert_eq!(back, GuidanceConfig::all());
+        assert_eq!((GuidanceConfig::all().object_gap, GuidanceConfig::shade().object_gap), (0.03, 0.0));
     }
 
     #[test]
