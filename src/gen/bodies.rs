@@ -7,9 +7,12 @@
 //! under 6 % where it stays half a radius off the piece), at every frame where the body
 //! has moved 10 cm; a pose repeated exactly (held still, a clip looped) is tested once and counted
 //! for each frame it stands for. J_p = Σ over pieces, bones and sampled frames of how far the bone reaches
-//! within [`CLEARANCE`] of the piece (its deepest ball's reach: the capsule's depth, which is what
-//! the check measures, plus the clearance); a bone resting on a seat's top costs only when it is
-//! inside. Its gradient is a central difference of the exact value over the balls
+//! within [`CLEARANCE`] of the piece: the capsule's depth, which is what the check measures, plus
+//! the clearance — its deepest ball's reach, or, where the bone passes through a part that is not
+//! a seat from below to above, how far the part must move sideways to let it out. A leg through a
+//! table's 4 cm top is as deep as the top's nearest edge is far; its balls were only as deep as
+//! the top is thin, the same wherever the table stood, so J_p could not push a table off a person
+//! standing in it. A bone resting on a seat's top costs only when it is inside. Its gradient is a central difference of the exact value over the balls
 //! near the piece; a query skips the rows of balls (one per bone and frame) whose box is far.
 //!
 //! J_s (ours) is its other half, support: for a piece anchored to a sitter's or a sleeper's contact
@@ -47,8 +50,6 @@ const DIFFERENCE_MARGIN: f64 = 0.005;
 struct Ball {
     center: DVec3,
     radius: f64,
-    /// Which bone of which human it belongs to (numbered per scene).
-    bone: u32,
     /// How many sampled frames hold this pose (a pose held still or a clip looped is tested once).
     weight: f64,
 }
@@ -87,19 +88,17 @@ impl BodyBalls {
     /// The balls of `humans` (a scene's).
     pub fn of(humans: &[Human]) -> BodyBalls {
         let mut out = BodyBalls::default();
-        let mut bones = 0u32;
         let poses: Vec<Vec<Pose>> = humans.iter().map(|h| distinct_poses(h, sampled_frames(h))).collect();
         let total: usize = poses.iter().map(Vec::len).sum();
         let keep_every = total.div_ceil(MAX_SAMPLED_FRAMES).max(1);
         for (human, poses) in humans.iter().zip(poses) {
             let kept = poses.into_iter().enumerate().filter(|(i, p)| i % keep_every == 0 || p.contact);
             for (_, pose) in kept {
-                bones += human.skeleton.bones.len() as u32;
-                for (k, bone) in human.skeleton.bones.iter().enumerate() {
+                for bone in &human.skeleton.bones {
                     out.reach = out.reach.max(bone.radius);
                     let (a, b) = (pose.joints[bone.a], pose.joints[bone.b]);
                     let start = out.balls.len();
-                    out.balls.extend(balls_along(a, b, bone.radius, bones + k as u32, pose.weight));
+                    out.balls.extend(balls_along(a, b, bone.radius, pose.weight));
                     out.rows.push(BallRow { range: start..out.balls.len(), a, b, radius: bone.radius });
                 }
             }
@@ -113,10 +112,10 @@ impl BodyBalls {
         self.balls.len()
     }
 
-    /// The balls that may reach into the horizontal rectangle `min`..`max` and come within
-    /// `margin` of costing against `parts` (within `margin` + [`CLEARANCE`] of them), in the
-    /// order of their bones.
-    fn near(&self, min: DVec2, max: DVec2, parts: &[PartFrame], margin: f64) -> Vec<Ball> {
+    /// The bones (one per bone and sampled frame) whose balls may reach into the horizontal
+    /// rectangle `min`..`max` and come within `margin` of costing against `parts` (within
+    /// `margin` + [`CLEARANCE`] of them), each with those balls.
+    fn near(&self, min: DVec2, max: DVec2, parts: &[PartFrame], margin: f64) -> Vec<NearBone> {
         let low = parts.iter().map(|p| p.center.z - p.half.z).fold(f64::INFINITY, f64::min);
         let high = parts.iter().map(|p| p.center.z + p.half.z).fold(f64::NEG_INFINITY, f64::max);
         let lo = (min - self.reach).extend(low - self.reach - CLEARANCE - margin);
@@ -129,17 +128,76 @@ impl BodyBalls {
                 continue;
             }
             let balls = self.balls[row.range.clone()].iter();
-            out.extend(balls.filter(|b| inside(b.center) && deepest_part(parts, b) > -margin));
+            let balls: Vec<Ball> =
+                balls.filter(|b| inside(b.center) && deepest_part(parts, b) > -margin).copied().collect();
+            if let Some(first) = balls.first() {
+                out.push(NearBone { a: row.a, b: row.b, radius: row.radius, weight: first.weight, balls });
+            }
         }
         out
     }
 }
 
+/// One bone at one sampled frame near a piece: its axis `a`..`b`, radius, and the balls of it that
+/// may cost.
+#[derive(Debug, Clone)]
+struct NearBone {
+    a: DVec3,
+    b: DVec3,
+    radius: f64,
+    weight: f64,
+    balls: Vec<Ball>,
+}
+
+impl NearBone {
+    /// How far the bone reaches within [`CLEARANCE`] of `part`: its deepest ball's reach, or where
+    /// it passes through a part that is not a seat from below its bottom to above its top (a leg
+    /// through a table's top), how far the part must move sideways to let it out, plus its radius
+    /// and the clearance — the capsule's depth, as the check measures it. The balls in a 4 cm top
+    /// are only as deep as the top is thin wherever the table stands, and their one slope, up or
+    /// down, moves the top along the leg: J_p could not push a table off a person standing in it.
+    fn reach(&self, part: &PartFrame) -> f64 {
+        let balls = self.balls.iter().map(|ball| ball_depth(part, ball)).fold(f64::NEG_INFINITY, f64::max);
+        let through = if part.seat { None } else { sideways_depth(part, self.a, self.b) };
+        through.map_or(balls, |depth| balls.max(self.radius + CLEARANCE + depth))
+    }
+}
+
+/// Where the segment `a`..`b` passes through `part`'s box from below its bottom to above its top:
+/// the least horizontal distance the box must move for the segment to pass beside it (`None`
+/// where it does not pass through, or passes beside already). Exact: the separating axes of the
+/// box's footprint and the segment's piece within the box's heights, projected on the floor.
+fn sideways_depth(part: &PartFrame, a: DVec3, b: DVec3) -> Option<f64> {
+    let (a, b, h) = (part.to_local(a), part.to_local(b), part.half);
+    if !(a.z.min(b.z) < -h.z && a.z.max(b.z) > h.z) {
+        return None;
+    }
+    let at = |z: f64| a.lerp(b, (z - a.z) / (b.z - a.z)).truncate();
+    let (p, q) = (at(-h.z), at(h.z));
+    let along = q - p;
+    let mut depth = f64::INFINITY;
+    for n in [DVec2::X, DVec2::Y, along.perp()] {
+        let length = n.length();
+        if length < 1e-9 {
+            continue;
+        }
+        let n = n / length;
+        let (pp, pq) = (n.dot(p), n.dot(q));
+        let r = n.abs().dot(h.truncate());
+        let overlap = (pp.max(pq) + r).min(r - pp.min(pq));
+        if overlap <= 0.0 {
+            return None;
+        }
+        depth = depth.min(overlap);
+    }
+    Some(depth)
+}
+
 /// The balls of a capsule from `a` to `b`: centres on the segment, no more than half the radius
 /// apart, ends included.
-fn balls_along(a: DVec3, b: DVec3, radius: f64, bone: u32, weight: f64) -> impl Iterator<Item = Ball> {
+fn balls_along(a: DVec3, b: DVec3, radius: f64, weight: f64) -> impl Iterator<Item = Ball> {
     let gaps = (a.distance(b) / (0.5 * radius)).ceil().max(1.0) as usize;
-    (0..=gaps).map(move |i| Ball { center: a.lerp(b, i as f64 / gaps as f64), radius, bone, weight })
+    (0..=gaps).map(move |i| Ball { center: a.lerp(b, i as f64 / gaps as f64), radius, weight })
 }
 
 /// One distinct pose of a human among its sampled frames: its joints, how many sampled frames
@@ -245,15 +303,12 @@ fn deepest_part(parts: &[PartFrame], ball: &Ball) -> f64 {
     parts.iter().map(|part| ball_depth(part, ball)).fold(f64::NEG_INFINITY, f64::max)
 }
 
-/// J_p of one piece against `balls` (sorted by bone): Σ over bones of how far they reach within
-/// [`CLEARANCE`] of its template, a bone's reach being its deepest ball's at that frame — one term
-/// per bone, frame and piece, so a long bone along a surface counts no more than a short one.
-fn piece_cost(o: &GuidedObject, balls: &[Ball]) -> f64 {
+/// J_p of one piece against `bones`: Σ over bones of how far they reach within [`CLEARANCE`] of
+/// its template ([`NearBone::reach`]) — one term per bone, frame and piece, so a long bone along a
+/// surface counts no more than a short one.
+fn piece_cost(o: &GuidedObject, bones: &[NearBone]) -> f64 {
     let parts = part_frames(o);
-    balls
-        .chunk_by(|a, b| a.bone == b.bone)
-        .map(|bone| bone[0].weight * bone.iter().map(|b| deepest_part(&parts, b)).fold(0.0, f64::max))
-        .sum()
+    bones.iter().map(|bone| bone.weight * parts.iter().map(|p| bone.reach(p)).fold(0.0, f64::max)).sum()
 }
 
 /// How deep `ball` reaches into `part` plus [`CLEARANCE`] (negative when further apart): its
@@ -291,13 +346,13 @@ pub fn body_penetration(objects: &[GuidedObject], bodies: &BodyBalls) -> (f64, V
         let c = o.center.truncate();
         // Only balls within a few millimetres of costing can change the cost as the gradient's
         // central differences move the piece.
-        let balls = bodies.near(c - reach, c + reach, &part_frames(o), DIFFERENCE_MARGIN);
-        let cost = piece_cost(o, &balls);
+        let bones = bodies.near(c - reach, c + reach, &part_frames(o), DIFFERENCE_MARGIN);
+        let cost = piece_cost(o, &bones);
         if cost <= 0.0 {
             continue;
         }
         total += cost;
-        *g = central_differences(o, |moved| piece_cost(moved, &balls));
+        *g = central_differences(o, |moved| piece_cost(moved, &bones));
     }
     (total, grads)
 }
@@ -470,9 +525,8 @@ mod tests {
             let radius = 0.05 + 0.02 * (t * 17.0).sin().abs();
             let check = solids.iter().map(|s| capsule_depth(a, b, radius, s)).fold(0.0, f64::max);
             let frames: Vec<PartFrame> = parts.iter().map(PartFrame::of).collect();
-            let balls = balls_along(a, b, radius, 0, 1.0)
-                .map(|ball| deepest_part(&frames, &ball) - CLEARANCE)
-                .fold(0.0, f64::max);
+            let balls =
+                balls_along(a, b, radius, 1.0).map(|ball| deepest_part(&frames, &ball) - CLEARANCE).fold(0.0, f64::max);
             // The row's union lies inside the capsule: never deeper than it.
             assert!(balls <= check + 1e-4, "{i}: balls {balls}, capsule {check}");
             // While the bone's axis is outside the piece, at distance d = radius − depth, the check's
@@ -487,6 +541,75 @@ mod tests {
             }
         }
         assert!(compared > 20, "only {compared} capsules grazed the wardrobe");
+    }
+
+    #[test]
+    fn a_bone_through_a_tables_top_is_as_deep_as_the_checks_capsule() {
+        use crate::physics::Owner;
+        use crate::sim::{Solid, capsule_depth};
+        let table = GuidedObject {
+            center: DVec3::new(0.1, -0.2, 0.375),
+            size: DVec3::new(1.6, 0.8, 0.75),
+            yaw: 0.4,
+            hanging: false,
+            category: Category::DiningTable,
+        };
+        let parts = template_of(table.category, &table.obox()).parts;
+        let top = parts.iter().find(|p| p.role == PartRole::Top).unwrap();
+        let (frame, solid) = (PartFrame::of(top), Solid::new(Owner::Object(0), top.obox));
+        let mut through = 0;
+        for i in 0..200 {
+            // Bones from the floor's height to above the top, every fourth vertical, at spread
+            // places over the table: going up or down is further out of the top than sideways.
+            let t = i as f64 * 0.61803;
+            let a = DVec3::new((t * 7.0).sin() * 0.9, (t * 3.0).cos() * 0.6 - 0.2, (t * 5.0).sin().abs() * 0.2);
+            let lean = if i % 4 == 0 { 0.0 } else { 0.2 };
+            let b = a + DVec3::new((t * 11.0).cos() * lean, (t * 13.0).sin() * lean, 1.3);
+            let radius = 0.05 + 0.02 * (t * 17.0).sin().abs();
+            let bone = NearBone { a, b, radius, weight: 1.0, balls: balls_along(a, b, radius, 1.0).collect() };
+            if sideways_depth(&frame, a, b).is_none() {
+                continue;
+            }
+            through += 1;
+            let check = capsule_depth(a, b, radius, &solid);
+            let reach = bone.reach(&frame) - CLEARANCE;
+            // Sideways is the way out of the top for a vertical bone; a slanted one may leave it a
+            // little sooner along a tilted direction, which the floor's projection does not see.
+            let slant = (b - a).truncate().length() / (b - a).length();
+            assert!(reach > check - 2e-3 && reach < check + 2e-3 + 0.03 * slant, "{i}: reach {reach}, capsule {check}");
+            // Its balls alone are only as deep as the top is thin.
+            let balls = bone.balls.iter().map(|ball| ball_depth(&frame, ball)).fold(0.0, f64::max) - CLEARANCE;
+            assert!(balls < radius + top.obox.half().z + 1e-9, "{i}: balls {balls}");
+        }
+        assert!(through > 40, "only {through} bones passed through the top");
+        // A bone beside the top, or standing on the floor under it, does not pass through.
+        let beside = DVec3::new(2.0, 2.0, 0.0);
+        assert_eq!(sideways_depth(&frame, beside, beside + DVec3::Z * 1.3), None);
+        assert_eq!(sideways_depth(&frame, table.center.with_z(0.0), table.center.with_z(0.5)), None);
+    }
+
+    #[test]
+    fn a_table_over_a_standing_persons_legs_is_pushed_off_them() {
+        use crate::human::stand;
+        let body = Body::default();
+        let mut m = Motion::new(body, 30.0);
+        m.hold(stand(&body, DVec2::ZERO, 0.0), 2, Action::Stand);
+        let bodies = BodyBalls::of(&[m.into_human("h0")]);
+        // A dining table whose near edge is 25 cm past the person's centre line: the thighs cross
+        // its top. The balls in the 4 cm top were as deep as it is thin wherever the table stood;
+        // the capsules are as deep as the edge is far, so the table is pushed off along x.
+        let table = |x: f64| GuidedObject {
+            center: DVec3::new(x, 0.0, 0.375),
+            size: DVec3::new(1.6, 0.9, 0.75),
+            yaw: 0.0,
+            hanging: false,
+            category: Category::DiningTable,
+        };
+        let (cost, grads) = body_penetration(&[table(0.55)], &bodies);
+        assert!(cost > 0.2, "{cost}");
+        assert!(grads[0][0] < -0.5, "∂J/∂x {}", grads[0][0]);
+        let (nearer, _) = body_penetration(&[table(0.65)], &bodies);
+        assert!(nearer < cost - 0.05, "{nearer} against {cost}");
     }
 
     #[test]
@@ -538,10 +661,21 @@ mod tests {
         // Every ball that may cost, bone by bone, with no window and no test of whole rows.
         let brute = |o: &GuidedObject| -> (f64, ObjectGradient) {
             let parts = part_frames(o);
-            let balls: Vec<Ball> =
-                bodies.balls.iter().filter(|b| deepest_part(&parts, b) > -DIFFERENCE_MARGIN).copied().collect();
-            let cost = piece_cost(o, &balls);
-            (cost, if cost > 0.0 { central_differences(o, |moved| piece_cost(moved, &balls)) } else { [0.0; 7] })
+            let bones: Vec<NearBone> = bodies
+                .rows
+                .iter()
+                .filter_map(|row| {
+                    let balls: Vec<Ball> = bodies.balls[row.range.clone()]
+                        .iter()
+                        .filter(|b| deepest_part(&parts, b) > -DIFFERENCE_MARGIN)
+                        .copied()
+                        .collect();
+                    let weight = balls.first()?.weight;
+                    Some(NearBone { a: row.a, b: row.b, radius: row.radius, weight, balls })
+                })
+                .collect();
+            let cost = piece_cost(o, &bones);
+            (cost, if cost > 0.0 { central_differences(o, |moved| piece_cost(moved, &bones)) } else { [0.0; 7] })
         };
         let mut costly = 0;
         for i in 0..120 {
