@@ -12,7 +12,8 @@
 //! Realism beyond SHADE's table, against the same reference scenes: each category's per-room count
 //! distribution (`count KL`, the mean over categories of KL(reference ‖ row), and `unseen`, the
 //! share of the row's rooms with a count no room of the training data has — the dataset's `train`
-//! split, else the reference itself; `counts` in JSON, with the offending category counts), `unreal`, the share of rooms with a piece further than 15 cm outside
+//! split, else the reference itself, and every split of each `--extra-data` dataset (a model's
+//! second draw of training rooms); `counts` in JSON, with the offending category counts), `unreal`, the share of rooms with a piece further than 15 cm outside
 //! its category's real sizes (`sizes` in JSON, by category and axis), and SCA (`eval::sca`: the held-out accuracy of a small classifier
 //! trained to tell the row's layouts from the reference's; 0.5 is indistinguishable). `--no-sca`
 //! skips SCA.
@@ -51,6 +52,11 @@ pub struct EvalArgs {
     /// Skip SCA, the classifier two-sample test (a few seconds a row).
     #[arg(long)]
     pub no_sca: bool,
+    /// Another dataset of the reference's room type whose every split joins the rooms `unseen`
+    /// counts against (the counts a real room has), as `train --extra-data` joins it to a model's
+    /// training rooms; repeatable.
+    #[arg(long)]
+    pub extra_data: Vec<PathBuf>,
 }
 
 /// The scene files under `dir` (recursively, not stats.json / calibration.json), sorted; an error
@@ -125,7 +131,15 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     // the counts a real room has.
     let train = args.reference.join("train");
     let pool = if test.is_dir() && train.is_dir() { Some(load_all(&train)?) } else { None };
-    let seen = pool.as_deref().map_or_else(|| counts.clone(), |p| CountDistribution::of(p, room));
+    let mut extra = Vec::new();
+    for dir in &args.extra_data {
+        let scenes = load_all(dir)?;
+        if let Some(s) = scenes.iter().find(|s| s.room_type != room) {
+            anyhow::bail!("{}: holds {} scenes, the reference is {room}", dir.display(), s.room_type);
+        }
+        extra.extend(scenes);
+    }
+    let seen = CountDistribution::of(pool.as_deref().unwrap_or(&reference).iter().chain(&extra), room);
     let mut rows = Vec::new();
     for dir in &args.pred {
         let (files, scenes) = load_named(dir)?;

@@ -27,17 +27,19 @@ pub struct CountDistribution {
 
 impl CountDistribution {
     /// The distribution of `scenes`, all of `room`.
-    pub fn of(scenes: &[Scene], room: RoomType) -> CountDistribution {
+    pub fn of<'a>(scenes: impl IntoIterator<Item = &'a Scene>, room: RoomType) -> CountDistribution {
         let cats = room.categories();
         let mut shares = vec![vec![0.0; room.max_objects() + 1]; cats.len()];
+        let mut rooms = 0;
         for s in scenes {
+            rooms += 1;
             for (c, counts) in room_counts(s, room).into_iter().enumerate() {
                 shares[c][counts] += 1.0;
             }
         }
-        let n = scenes.len().max(1) as f64;
+        let n = rooms.max(1) as f64;
         shares.iter_mut().flatten().for_each(|v| *v /= n);
-        CountDistribution { room, shares, rooms: scenes.len() }
+        CountDistribution { room, shares, rooms }
     }
 
     /// Whether some room here has exactly `count` pieces of category index `c`.

@@ -359,3 +359,48 @@ fn calibration_puts_no_one_inside_another() {
     assert_eq!(apart, 0, "pairs calibration put inside each other");
     assert!(overlapping >= 3, "the rooms test nothing: {overlapping}");
 }
+
+#[test]
+fn eval_counts_unseen_against_the_train_split_and_every_extra_dataset() {
+    // The reference's train split has the rectangular living room (2 corner side tables, no wine
+    // cabinet); the generated row is the L-shaped one (3 and 1): unseen, until an extra dataset
+    // holding such a room joins the training rooms, as `train --extra-data` joins a second draw.
+    let dir = tempfile::tempdir().unwrap();
+    let copy = |from: &str, to: &str| {
+        let to = dir.path().join(to);
+        std::fs::create_dir_all(to.parent().unwrap()).unwrap();
+        std::fs::copy(crate::root().join("scenes/reference").join(from), &to).unwrap();
+    };
+    copy("living_rect.json", "data/train/living_rect.json");
+    copy("living_rect.json", "data/test/living_rect.json");
+    copy("living_l.json", "pred/living_l.json");
+    copy("living_l.json", "extra/train/living_l.json");
+    copy("bedroom_l.json", "bedrooms/train/bedroom_l.json");
+    let path = |p: &str| dir.path().join(p).to_string_lossy().into_owned();
+    let unseen = |extra: &[&str]| {
+        let mut args = vec!["eval", "--json", "--no-physics", "--no-sca"];
+        let (pred, data) = (path("pred"), path("data"));
+        args.extend(["--pred", pred.as_str(), "--ref", data.as_str()]);
+        let extra: Vec<String> = extra.iter().map(|e| path(e)).collect();
+        for e in &extra {
+            args.extend(["--extra-data", e.as_str()]);
+        }
+        let o = shade_sim(&args);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        let rows: Vec<shade_sim::eval::EvalRow> = serde_json::from_slice(&o.stdout).unwrap();
+        let counts = rows[0].counts.clone().unwrap();
+        let mut which: Vec<(String, usize)> = counts.unseen.iter().map(|u| (u.category.to_string(), u.count)).collect();
+        which.sort();
+        (counts.unseen_rooms, which)
+    };
+    let without = unseen(&[]);
+    assert_eq!(without.0, 1.0);
+    assert!(without.1.contains(&("corner_side_table".to_string(), 3)), "{:?}", without.1);
+    assert!(without.1.contains(&("wine_cabinet".to_string(), 1)), "{:?}", without.1);
+    assert_eq!(unseen(&["extra"]), (0.0, vec![]));
+    // An extra dataset of another room type is refused, naming it.
+    let (pred, data, bedrooms) = (path("pred"), path("data"), path("bedrooms"));
+    let o = shade_sim(&["eval", "--no-physics", "--pred", &pred, "--ref", &data, "--extra-data", &bedrooms]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(stderr(&o).trim(), format!("error: {bedrooms}: holds bedroom scenes, the reference is living"));
+}
