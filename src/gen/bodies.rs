@@ -12,8 +12,9 @@
 //! a seat from below to above, how far the part must move sideways to let it out. A leg through a
 //! table's 4 cm top is as deep as the top's nearest edge is far; its balls were only as deep as
 //! the top is thin, the same wherever the table stood, so J_p could not push a table off a person
-//! standing in it. A bone resting on a seat's top costs only when it is inside. Its gradient is a central difference of the exact value over the balls
-//! near the piece; a query skips the rows of balls (one per bone and frame) whose box is far.
+//! standing in it. A bone resting on a seat's top costs only when it is inside. Its gradient is a
+//! central difference of the exact value over the balls near the piece; a query skips the rows of
+//! balls (one per bone and frame) whose box is far.
 //!
 //! J_s (ours) is its other half, support: for a piece anchored to a sitter's or a sleeper's contact
 //! box, how far the top of the piece's parts under the box's centre stays below the box's top (the
@@ -50,8 +51,6 @@ const DIFFERENCE_MARGIN: f64 = 0.005;
 struct Ball {
     center: DVec3,
     radius: f64,
-    /// How many sampled frames hold this pose (a pose held still or a clip looped is tested once).
-    weight: f64,
 }
 
 /// The bodies of one scene as balls along their bones, one row of balls per bone and sampled
@@ -71,6 +70,8 @@ struct BallRow {
     a: DVec3,
     b: DVec3,
     radius: f64,
+    /// How many sampled frames hold this pose (a pose held still or a clip looped is tested once).
+    weight: f64,
 }
 
 impl BallRow {
@@ -98,8 +99,9 @@ impl BodyBalls {
                     out.reach = out.reach.max(bone.radius);
                     let (a, b) = (pose.joints[bone.a], pose.joints[bone.b]);
                     let start = out.balls.len();
-                    out.balls.extend(balls_along(a, b, bone.radius, pose.weight));
-                    out.rows.push(BallRow { range: start..out.balls.len(), a, b, radius: bone.radius });
+                    out.balls.extend(balls_along(a, b, bone.radius));
+                    let (range, radius, weight) = (start..out.balls.len(), bone.radius, pose.weight);
+                    out.rows.push(BallRow { range, a, b, radius, weight });
                 }
             }
         }
@@ -130,8 +132,8 @@ impl BodyBalls {
             let balls = self.balls[row.range.clone()].iter();
             let balls: Vec<Ball> =
                 balls.filter(|b| inside(b.center) && deepest_part(parts, b) > -margin).copied().collect();
-            if let Some(first) = balls.first() {
-                out.push(NearBone { a: row.a, b: row.b, radius: row.radius, weight: first.weight, balls });
+            if !balls.is_empty() {
+                out.push(NearBone { a: row.a, b: row.b, radius: row.radius, weight: row.weight, balls });
             }
         }
         out
@@ -195,9 +197,9 @@ fn sideways_depth(part: &PartFrame, a: DVec3, b: DVec3) -> Option<f64> {
 
 /// The balls of a capsule from `a` to `b`: centres on the segment, no more than half the radius
 /// apart, ends included.
-fn balls_along(a: DVec3, b: DVec3, radius: f64, weight: f64) -> impl Iterator<Item = Ball> {
+fn balls_along(a: DVec3, b: DVec3, radius: f64) -> impl Iterator<Item = Ball> {
     let gaps = (a.distance(b) / (0.5 * radius)).ceil().max(1.0) as usize;
-    (0..=gaps).map(move |i| Ball { center: a.lerp(b, i as f64 / gaps as f64), radius, weight })
+    (0..=gaps).map(move |i| Ball { center: a.lerp(b, i as f64 / gaps as f64), radius })
 }
 
 /// One distinct pose of a human among its sampled frames: its joints, how many sampled frames
@@ -526,7 +528,7 @@ mod tests {
             let check = solids.iter().map(|s| capsule_depth(a, b, radius, s)).fold(0.0, f64::max);
             let frames: Vec<PartFrame> = parts.iter().map(PartFrame::of).collect();
             let balls =
-                balls_along(a, b, radius, 1.0).map(|ball| deepest_part(&frames, &ball) - CLEARANCE).fold(0.0, f64::max);
+                balls_along(a, b, radius).map(|ball| deepest_part(&frames, &ball) - CLEARANCE).fold(0.0, f64::max);
             // The row's union lies inside the capsule: never deeper than it.
             assert!(balls <= check + 1e-4, "{i}: balls {balls}, capsule {check}");
             // While the bone's axis is outside the piece, at distance d = radius − depth, the check's
@@ -566,7 +568,7 @@ mod tests {
             let lean = if i % 4 == 0 { 0.0 } else { 0.2 };
             let b = a + DVec3::new((t * 11.0).cos() * lean, (t * 13.0).sin() * lean, 1.3);
             let radius = 0.05 + 0.02 * (t * 17.0).sin().abs();
-            let bone = NearBone { a, b, radius, weight: 1.0, balls: balls_along(a, b, radius, 1.0).collect() };
+            let bone = NearBone { a, b, radius, weight: 1.0, balls: balls_along(a, b, radius).collect() };
             if sideways_depth(&frame, a, b).is_none() {
                 continue;
             }
@@ -670,8 +672,13 @@ mod tests {
                         .filter(|b| deepest_part(&parts, b) > -DIFFERENCE_MARGIN)
                         .copied()
                         .collect();
-                    let weight = balls.first()?.weight;
-                    Some(NearBone { a: row.a, b: row.b, radius: row.radius, weight, balls })
+                    (!balls.is_empty()).then_some(NearBone {
+                        a: row.a,
+                        b: row.b,
+                        radius: row.radius,
+                        weight: row.weight,
+                        balls,
+                    })
                 })
                 .collect();
             let cost = piece_cost(o, &bones);

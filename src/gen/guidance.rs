@@ -143,9 +143,9 @@ pub struct GuidanceConfig {
 impl GuidanceConfig {
     /// All three spatial terms with the default settings, chosen on the val splits
     /// (docs/RESULTS.md, "Guidance that converges", "Bodies and support" and "Bones, not surface
-    /// points", "J_b weighted 8" and "J_o's gap, the default"): J_b weighted 8, J_o
-    /// as the share of the smaller piece with footprints kept 3 cm apart, J_c 4 holding the pieces under people (which otherwise
-    /// move like any piece), J_p and J_s 1 keeping them out of the bodies and up against them, and
+    /// points", "J_b weighted 8" and "J_o's gap, the default"): J_b weighted 8, J_o as the share
+    /// of the smaller piece with footprints kept 3 cm apart, J_c 4 holding the pieces under people
+    /// (which otherwise move like any piece), J_p and J_s 1 keeping them out of the bodies and up against them, and
     /// J_q 1 turning pieces square to the walls, and in each of the last 20 steps up to 128 gradient
     /// steps of at most 3 cm; pieces in anchored slots overlapping by more than a quarter of the
     /// smaller are folded into one (docs/RESULTS.md, "One piece for the people on it").
@@ -183,8 +183,8 @@ impl GuidanceConfig {
     /// (weight 0.2) and J_c exact (zero once a piece covers its contact box); J_o keeps pieces
     /// 3 cm apart as in `all()`. The model's own layouts look far more like the data's (val SCA
     /// alone 0.98 / 0.89 / 0.94 → 0.73 / 0.75 / 0.81), but one or two more val rooms in a hundred
-    /// fail after repair in living and dining rooms, so it is not the default (docs/RESULTS.md, "Pieces at their walls" and "Terms that
-    /// let go at the data's targets").
+    /// fail after repair in living and dining rooms, so it is not the default (docs/RESULTS.md,
+    /// "Pieces at their walls" and "Terms that let go at the data's targets").
     pub fn exact() -> GuidanceConfig {
         GuidanceConfig {
             bound_margin: Some(crate::data::layout::WALL_GAP),
