@@ -16,7 +16,16 @@
 //!   centre is a metre deep. For a piece wholly inside the room the centre lies half the piece's
 //!   smaller side further in than its edges, so it adds nothing;
 //! - each reflex corner of the floor plan (an L-shaped room's inner corner, which can poke into a
-//!   footprint whose own corners are all inside): its depth inside the footprint plus `margin`.
+//!   footprint whose own corners are all inside): its depth inside the footprint plus `margin`;
+//! - in a floor plan with a reflex corner, the part of the footprint outside the walls: the Huber
+//!   loss of each point's depth beyond the walls integrated over the footprint, each 10 × 10 cm
+//!   counting as one point ([`outside_mass`]). In a convex room a footprint corner is the deepest
+//!   point of the footprint, so the corners say it all. In a U- or L-shaped room they do not: a
+//!   corner in a notch is drawn to the notch's nearest wall, which may be the side the piece cannot
+//!   leave by, and a piece widened over a notch brings its corners back inside while its middle
+//!   stays out (val living rooms: a pendant lamp pulled into a 0.9 m notch and widened from 0.41
+//!   to 0.75 m; a 3.1 m bookshelf along a notch's wall). The integral grows with the area outside,
+//!   so it moves a piece out the way most of it is nearest and never widens it over the notch.
 //!
 //! Each depth d counts as a Huber loss: d² / 2δ up to [`SOFT_DEPTH`] δ (10 cm), d − δ/2 beyond,
 //! so a piece far out is pushed at a steady rate and one that has just crossed the line gently.
@@ -56,8 +65,57 @@ pub fn depth_beyond_walls(objects: &[GuidedObject], floor: &Polygon, margin: f64
     for (o, g) in objects.iter().zip(&mut grads) {
         total += corners_beyond(o, floor, margin, g);
         total += walls_inside(o, &reflex, margin, g);
+        if !reflex.is_empty() {
+            total += outside_mass(o, floor, g);
+        }
     }
     (total, grads)
+}
+
+/// Spacing (m) of the points the outside mass samples a footprint at.
+const MASS_SPACING: f64 = 0.05;
+
+/// The footprint area (m²) that counts as much as one footprint corner as deep.
+const MASS_UNIT_AREA: f64 = SOFT_DEPTH * SOFT_DEPTH;
+
+/// The Huber loss of each footprint point's depth beyond the walls of `floor` (not the margin
+/// line: near the walls the corners' term measures the gap), integrated over the footprint on a
+/// grid of at most [`MASS_SPACING`], in units of [`MASS_UNIT_AREA`]; its gradient (central
+/// differences, the grid held fixed) added to `g`. Zero, and not sampled, for a footprint inside
+/// the floor plan: all its corners inside and no floor-plan corner within it.
+fn outside_mass(o: &GuidedObject, floor: &Polygon, g: &mut ObjectGradient) -> f64 {
+    let b = o.obox();
+    let inside = b.footprint().iter().all(|&c| floor.contains(c))
+        && floor.points.iter().all(|&v| b.footprint_signed_distance(v) >= 0.0);
+    if inside {
+        return 0.0;
+    }
+    let cells = |length: f64| ((length / MASS_SPACING).ceil() as usize).clamp(1, 64);
+    let (nu, nv) = (cells(o.size.x), cells(o.size.y));
+    let cost = |o: &GuidedObject| {
+        let (ax, ay) = o.obox().axes();
+        let centre = o.center.truncate();
+        let mut sum = 0.0;
+        for i in 0..nu {
+            let u = ((i as f64 + 0.5) / nu as f64 - 0.5) * o.size.x;
+            for j in 0..nv {
+                let v = ((j as f64 + 0.5) / nv as f64 - 0.5) * o.size.y;
+                let p = centre + ax * u + ay * v;
+                if !floor.contains(p) {
+                    sum += huber(p.distance(floor.nearest_boundary_point(p))).0;
+                }
+            }
+        }
+        sum * o.size.x * o.size.y / (nu * nv) as f64 / MASS_UNIT_AREA
+    };
+    let total = cost(o);
+    if total <= 0.0 {
+        return 0.0;
+    }
+    for (g, d) in g.iter_mut().zip(o.central_differences(&[0, 1, 3, 4, 6], 1e-5, cost)) {
+        *g += d;
+    }
+    total
 }
 
 /// The Huber losses of the footprint corners' and centre's depths past the margin line, their
@@ -183,26 +241,56 @@ mod tests {
         assert!((j - 0.025).abs() < 1e-12 && (g[0][1] + 1.0).abs() < 1e-9, "{j} {:?}", g[0]);
     }
 
-    #[test]
-    fn a_piece_filling_a_notch_is_pushed_out_of_it_by_its_centre() {
-        // A U: the 6 × 4 rectangle without x 2–4, y 2–4. A 1.96 × 1.3 piece in the notch, its
-        // corners 2 cm past the notch's side walls.
+    /// A U: the 6 × 4 rectangle without x 2–4, y 2–4.
+    fn u_room() -> Polygon {
         let p = [(0.0, 0.0), (6.0, 0.0), (6.0, 4.0), (4.0, 4.0), (4.0, 2.0), (2.0, 2.0), (2.0, 4.0), (0.0, 4.0)];
-        let room = Polygon { points: p.iter().map(|&(x, y)| DVec2::new(x, y)).collect() };
-        let (j, g) = depth_beyond_walls(&[piece(3.0, 2.9, 1.96, 1.3, 0.0)], &room, 0.05);
+        Polygon { points: p.iter().map(|&(x, y)| DVec2::new(x, y)).collect() }
+    }
+
+    #[test]
+    fn a_piece_filling_a_notch_is_pushed_out_of_it_by_its_centre_and_the_part_outside() {
+        // A 1.96 × 1.3 piece in the notch, its corners 2 cm past the notch's side walls.
+        let room = u_room();
+        let o = piece(3.0, 2.9, 1.96, 1.3, 0.0);
+        let mut corners = [0.0; 7];
         // Each corner 0.02 + 0.05 past the line (quadratic); the centre 0.9 m from the notch's
         // bottom edge (y = 2), plus the margin, beyond δ: 0.95 − 0.05.
         let corner = 0.07 * 0.07 / 0.2;
-        assert!((j - (4.0 * corner + 0.9)).abs() < 1e-9, "{j}");
+        assert!((corners_beyond(&o, &room, 0.05, &mut corners) - (4.0 * corner + 0.9)).abs() < 1e-9);
         // The corners' pushes cancel; the centre pulls the piece down, into the room, at rate 1.
-        assert!((g[0][1] - 1.0).abs() < 1e-9 && g[0][0].abs() < 1e-9, "{:?}", g[0]);
+        assert!((corners[1] - 1.0).abs() < 1e-9 && corners[0].abs() < 1e-9, "{corners:?}");
+        // All its 2.5 m² are outside, most points 0.1–0.5 m from the notch's walls: ~60 points' worth.
+        let (j, g) = depth_beyond_walls(&[o], &room, 0.05);
+        assert!(j > 40.0, "{j}");
+        // Pulled down by it, and never sideways (the piece is symmetric about x = 3).
+        assert!(g[0][1] > 40.0 && g[0][0].abs() < 1e-6 * g[0][1], "{:?}", g[0]);
+    }
+
+    #[test]
+    fn a_piece_over_a_notch_moves_out_the_way_most_of_it_is_nearest_and_is_not_widened() {
+        // The val living room's pendant lamp: 0.75 × 0.42 at x 2.18–2.93 across a 0.9 m notch
+        // (x 2–2.9 here as x 2–4 is in the U above, so a room with its notch at x 2–2.9).
+        let p = [(0.0, 0.0), (4.9, 0.0), (4.9, 7.2), (2.9, 7.2), (2.9, 2.2), (2.0, 2.2), (2.0, 7.2), (0.0, 7.2)];
+        let room = Polygon { points: p.iter().map(|&(x, y)| DVec2::new(x, y)).collect() };
+        let lamp = piece(2.555, 4.71, 0.75, 0.42, 0.0);
+        // The corners alone pull it left, into the notch (its left corners are nearest the notch's
+        // left wall), and widen it.
+        let mut corners = [0.0; 7];
+        corners_beyond(&lamp, &room, 0.05, &mut corners);
+        assert!(corners[0] > 0.0 && corners[3] < 0.0, "{corners:?}");
+        // With the part outside, it moves right, where most of it is nearest, and narrows.
+        let (_, g) = depth_beyond_walls(&[lamp], &room, 0.05);
+        assert!(g[0][0] < 0.0 && g[0][3] > 0.0, "{:?}", g[0]);
+        // Wholly in the right wing, it costs only its corners (and nothing 5 cm from the walls).
+        assert_eq!(depth_beyond_walls(&[piece(3.4, 4.71, 0.75, 0.42, 0.0)], &room, 0.05).0, 0.0);
     }
 
     #[test]
     fn gradients_match_finite_differences() {
         let room = l_room();
         // Turned, across the reflex corner and past the wall x = 0.
-        let objects = [piece(2.1, 2.3, 1.2, 0.7, 0.3), piece(0.3, 1.0, 0.9, 0.5, -0.2)];
+        // Sizes off the outside mass's 5 cm grid, which the finite differences would re-cut.
+        let objects = [piece(2.1, 2.3, 1.21, 0.71, 0.3), piece(0.3, 1.0, 0.93, 0.52, -0.2)];
         let (_, g) = depth_beyond_walls(&objects, &room, 0.05);
         for i in 0..objects.len() {
             // Piece 0 is across the inner corner, whose term does not turn it.
