@@ -87,11 +87,12 @@ impl RepairFlags {
 /// Collision guidance flags (shared with `demo`).
 #[derive(Debug, Clone, Args)]
 pub struct GuidanceArgs {
-    /// Guidance terms during sampling: none, all (= mot,bound,obj), or a list of mot, bound, obj,
-    /// phys (physics feedback in the last steps) and exact (the terms measured exactly: pieces 5 cm
-    /// inside the walls, wall pieces drawn back to their wall, contact boxes just covered; `walls`
-    /// is its older name). Pieces are kept 3 cm apart. Repair after sampling is separate
-    /// (--no-repair).
+    /// Guidance terms during sampling: none, all (= mot,bound,obj), or a list of mot, bound, obj
+    /// and phys (physics feedback in the last steps). The terms are measured exactly: pieces kept
+    /// 5 cm inside the walls and 3 cm apart, wall pieces drawn back to their wall, contact boxes
+    /// just covered by their piece's seat or top; add `soft` for SHADE's soft J_b and J_c without
+    /// the wall pull (the default before 2026-11-27; `exact` and `walls` are accepted and change
+    /// nothing). Repair after sampling is separate (--no-repair).
     #[arg(long, default_value = "all")]
     pub guidance: String,
     /// Step size γ of the guidance (default: the tuned value in docs/RESULTS.md).
