@@ -13,10 +13,13 @@
 //!   and are left out of J_m (as Col_mot leaves them out).
 //! - J_o uses the exact oriented-box IoU; its gradient is a central difference of the exact value,
 //!   computed only for pairs whose bounding boxes meet.
-//! - J_c (ours, not SHADE's) holds the piece in an anchored slot under its person: the soft area
-//!   (m²) of its contact box's footprint that the piece's footprint does not cover. With it the
-//!   pieces under people move like any other (out of a wall, off a nightstand) as far as their
-//!   person still rests on them, instead of being frozen.
+//! - J_c (ours, not SHADE's) holds the piece in an anchored slot under its person: by default the
+//!   depths of its contact box's corners outside the piece's surface ([`super::boxes_uncovered`]),
+//!   or softly, the area (m²) of the box's footprint that the piece's footprint does not cover.
+//!   With it the pieces under people move like any other (out of a wall, off a nightstand) as far
+//!   as their person still rests on them, instead of being frozen.
+//! - By default J_b is measured exactly too ([`super::beyond_walls`]), and J_w draws wall pieces
+//!   back to their wall ([`super::against_walls`]); `GuidanceConfig::soft` keeps the soft terms.
 //!
 //! Empty slots (largest class "empty") are left alone. The physics-feedback term lives elsewhere.
 
