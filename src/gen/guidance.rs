@@ -849,11 +849,15 @@ fn guide_item(
         let step = token_gradient(t, g, bounds);
         let mut scale = if slot < anchored { cfg.scale * cfg.anchored_mobility } else { cfg.scale };
         if let Some(cap) = cfg.max_step {
-            // The centre's world displacement: the token moves by scale·step, a token unit is half
-            // the decoding range.
-            let moved = (0..2)
+            // The centre's world displacement and each size's change: the token moves by
+            // scale·step, a token unit is half the decoding range.
+            let centre = (0..2)
                 .map(|k| scale * step[k] * (bounds.center_max[k] - bounds.center_min[k]) * 0.5)
                 .fold(0.0, |acc: f64, d| acc.hypot(d));
+            let resized = (0..3)
+                .map(|k| (scale * step[3 + k] * (bounds.size_max[k] - bounds.size_min[k]) * 0.5).abs())
+                .fold(0.0, f64::max);
+            let moved = centre.max(resized);
             if moved > cap {
                 scale *= cap / moved;
             }
