@@ -100,10 +100,7 @@ fn outside_mass(o: &GuidedObject, floor: &Polygon, g: &mut ObjectGradient) -> f6
             let u = ((i as f64 + 0.5) / nu as f64 - 0.5) * o.size.x;
             for j in 0..nv {
                 let v = ((j as f64 + 0.5) / nv as f64 - 0.5) * o.size.y;
-                let p = centre + ax * u + ay * v;
-                if !floor.contains(p) {
-                    sum += huber(p.distance(floor.nearest_boundary_point(p))).0;
-                }
+                sum += huber(floor.signed_distance(centre + ax * u + ay * v)).0;
             }
         }
         sum * o.size.x * o.size.y / (nu * nv) as f64 / MASS_UNIT_AREA

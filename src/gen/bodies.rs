@@ -405,8 +405,7 @@ pub fn support_shortfall(objects: &[GuidedObject], needs: &[Vec<SupportNeed>]) -
         *g = central_differences(o, gap);
         let scaled: f64 = needs
             .iter()
-            .filter(|need| support_gap(o, need) > 0.0)
-            .filter_map(|need| top_over(o, need))
+            .filter_map(|need| top_over(o, need).filter(|top| need.height - SUPPORT_TOLERANCE - top > 0.0))
             .map(|top| top / o.size.z)
             .sum();
         g[5] = g[5].min(-scaled);

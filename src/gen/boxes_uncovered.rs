@@ -23,6 +23,7 @@
 use super::beyond_walls::huber;
 use super::guidance::{GuidedObject, ObjectGradient};
 use crate::furniture::template_of;
+use crate::geom::OBox;
 use glam::DVec2;
 
 /// Σ over pieces, over the contact boxes each serves (`corners[i]`: each box's four footprint
@@ -42,14 +43,11 @@ pub fn box_corners_outside(
         }
         let cost = |o: &GuidedObject| {
             let b = o.obox();
-            let half = b.size.truncate() * 0.5;
-            let (min, max) = template_of(o.category, &b).surface.map_or((-half, half), |s| (s.min, s.max));
-            let (middle, half) = ((min + max) * 0.5, (max - min) * 0.5);
-            let outside = |p: DVec2| {
-                let q = (b.to_local(p.extend(b.center.z)).truncate() - middle).abs() - half;
-                q.max(DVec2::ZERO).length() + q.max_element().min(0.0)
-            };
-            boxes.iter().flatten().map(|&p| huber(outside(p) + margin).0).sum::<f64>()
+            // The surface as a box of its own (the whole footprint for a piece without one).
+            let surface = template_of(o.category, &b).surface.map_or(b, |s| {
+                OBox::new(b.to_world(((s.min + s.max) * 0.5).extend(0.0)), (s.max - s.min).extend(b.size.z), b.yaw)
+            });
+            boxes.iter().flatten().map(|&p| huber(surface.footprint_signed_distance(p) + margin).0).sum::<f64>()
         };
         let value = cost(o);
         if value <= 0.0 {
