@@ -564,13 +564,7 @@ mod tests {
     fn a_bone_through_a_tables_top_is_as_deep_as_the_checks_capsule() {
         use crate::physics::Owner;
         use crate::sim::{Solid, capsule_depth};
-        let table = GuidedObject {
-            center: DVec3::new(0.1, -0.2, 0.375),
-            size: DVec3::new(1.6, 0.8, 0.75),
-            yaw: 0.4,
-            hanging: false,
-            category: Category::DiningTable,
-        };
+        let table = GuidedObject::standing(Category::DiningTable, 0.1, -0.2, [1.6, 0.8, 0.75], 0.4);
         let parts = template_of(table.category, &table.obox()).parts;
         let top = parts.iter().find(|p| p.role == PartRole::Top).unwrap();
         let (frame, solid) = (PartFrame::of(top), Solid::new(Owner::Object(0), top.obox));
@@ -615,13 +609,7 @@ mod tests {
         // A dining table whose near edge is 25 cm past the person's centre line: the thighs cross
         // its top. The balls in the 4 cm top were as deep as it is thin wherever the table stood;
         // the capsules are as deep as the edge is far, so the table is pushed off along x.
-        let table = |x: f64| GuidedObject {
-            center: DVec3::new(x, 0.0, 0.375),
-            size: DVec3::new(1.6, 0.9, 0.75),
-            yaw: 0.0,
-            hanging: false,
-            category: Category::DiningTable,
-        };
+        let table = |x: f64| GuidedObject::standing(Category::DiningTable, x, 0.0, [1.6, 0.9, 0.75], 0.0);
         let (cost, grads) = body_penetration(&[table(0.55)], &bodies);
         assert!(cost > 0.2, "{cost}");
         assert!(grads[0][0] < -0.5, "∂J/∂x {}", grads[0][0]);
@@ -670,13 +658,7 @@ mod tests {
     fn a_chair_whose_seat_the_template_holds_at_its_least_height_is_still_raised() {
         // A 0.65 m dining chair: its seat is 0.35 m (the template's least), as for any chair
         // under 0.67 m, so the seat's own slope is zero; a sitter needs 0.415 m.
-        let chair = |h: f64| GuidedObject {
-            center: DVec3::new(0.0, 0.0, h * 0.5),
-            size: DVec3::new(0.47, 0.52, h),
-            yaw: 0.0,
-            hanging: false,
-            category: Category::DiningChair,
-        };
+        let chair = |h: f64| GuidedObject::standing(Category::DiningChair, 0.0, 0.0, [0.47, 0.52, h], 0.0);
         let need = SupportNeed { at: DVec2::new(0.0, 0.05), height: 0.415 };
         let (gap, g) = support_shortfall(&[chair(0.65)], &[vec![need]]);
         assert!((gap - 0.045).abs() < 1e-9, "{gap}");

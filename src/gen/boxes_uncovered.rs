@@ -105,13 +105,7 @@ mod tests {
     fn a_box_over_a_sofas_arm_or_back_is_not_held_and_the_sofa_is_moved_under_it() {
         // A 2 × 0.9 m sofa: arms 0.2 m wide, its back 0.225 m deep at −y; the seat spans x ±0.8,
         // y −0.225–0.45 about the centre.
-        let sofa = |x: f64, y: f64| GuidedObject {
-            center: DVec3::new(x, y, 0.4),
-            size: DVec3::new(2.0, 0.9, 0.8),
-            yaw: 0.0,
-            hanging: false,
-            category: Category::MultiSeatSofa,
-        };
+        let sofa = |x: f64, y: f64| GuidedObject::standing(Category::MultiSeatSofa, x, y, [2.0, 0.9, 0.8], 0.0);
         // The sitter's box on the seat: nothing.
         assert_eq!(box_corners_outside(&[sofa(1.0, 1.0)], &[vec![sitter_box()]], 0.0).0, 0.0);
         // Sofa moved 0.7 m in −x: the box (x 0.825–1.175) reaches 0.075 m over the arm's inner edge

@@ -408,6 +408,14 @@ pub struct GuidedObject {
     pub category: Category,
 }
 
+#[cfg(test)]
+impl GuidedObject {
+    /// A piece standing on the floor, `size` its width, depth and height: the terms' tests' pieces.
+    pub(crate) fn standing(category: Category, x: f64, y: f64, size: [f64; 3], yaw: f64) -> GuidedObject {
+        GuidedObject { center: DVec3::new(x, y, size[2] * 0.5), size: DVec3::from(size), yaw, hanging: false, category }
+    }
+}
+
 impl GuidedObject {
     /// The guidance's view of a decoded object.
     pub fn of(o: &Object) -> GuidedObject {
@@ -1229,13 +1237,7 @@ mod tests {
         };
         let need = Footprint::of(&window(), &b).support.expect("a touch needs its piece up to the palm");
         assert!((need.height - 0.85).abs() < 1e-12);
-        let table = |h: f64| GuidedObject {
-            center: DVec3::new(2.0, 2.1, h * 0.5),
-            size: DVec3::new(1.2, 0.8, h),
-            yaw: 0.0,
-            hanging: false,
-            category: Category::Table,
-        };
+        let table = |h: f64| GuidedObject::standing(Category::Table, 2.0, 2.1, [1.2, 0.8, h], 0.0);
         let (j, g) = support_shortfall(&[table(0.65)], &[vec![need]]);
         assert!((j - 0.18).abs() < 1e-9, "{j}");
         assert!(g[0][5] < 0.0, "{:?}", g[0]);
