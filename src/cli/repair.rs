@@ -71,7 +71,7 @@ pub fn run(args: &RepairArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus>
         let t: RepairTotals = reports.iter().map(|r| r.totals).sum();
         print_text(&format!(
             "{} scenes repaired into {}: {moved} changed, largest move {:.3} m; objects: {} resized, {} added, \
-             {} widened, {} narrowed, {} pushed, {} fitted to bodies, {} left out, {} removed; {} passing layouts kept as given (repair \
+             {} widened, {} narrowed, {} fitted to bodies, {} left out, {} removed; {} passing layouts kept as given (repair \
              made them fail)\n",
             reports.len(),
             out_dir.display(),
@@ -80,7 +80,6 @@ pub fn run(args: &RepairArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus>
             t.settle.added,
             t.widened,
             t.narrowed,
-            t.pushed,
             t.fitted,
             t.left_out,
             t.removed,

@@ -24,8 +24,6 @@ pub enum StepName {
     WideSeats,
     /// Pieces poking out of the floor plan moved or narrowed inside (`fit_into_room`).
     FitIntoRoom,
-    /// Pieces pushed or narrowed out of the bones that enter them (`off_bodies`).
-    OffBodies,
     /// Pieces reshaped out of the bones that still enter them (`fit_to_bodies`).
     FitToBodies,
     /// Pieces people still pass through left out (`left_out`).
@@ -36,12 +34,11 @@ pub enum StepName {
 
 impl StepName {
     /// Every step, in the order the default pipeline runs them.
-    pub const ALL: [StepName; 8] = [
+    pub const ALL: [StepName; 7] = [
         StepName::Settle,
         StepName::Relocate,
         StepName::WideSeats,
         StepName::FitIntoRoom,
-        StepName::OffBodies,
         StepName::FitToBodies,
         StepName::LeftOut,
         StepName::Overlaps,
@@ -54,7 +51,6 @@ impl StepName {
             StepName::Relocate => "relocate",
             StepName::WideSeats => "wide_seats",
             StepName::FitIntoRoom => "fit_into_room",
-            StepName::OffBodies => "off_bodies",
             StepName::FitToBodies => "fit_to_bodies",
             StepName::LeftOut => "left_out",
             StepName::Overlaps => "overlaps",
@@ -83,7 +79,7 @@ pub struct RepairConfig {
     pub completion: CompletionConfig,
     /// `settle`'s settings.
     pub settle: SettleConfig,
-    /// How far a step may narrow a piece (`fit_into_room`, `off_bodies`, `overlaps`).
+    /// How far a step may narrow a piece (`fit_into_room`, `overlaps`).
     pub narrowing: NarrowingConfig,
     /// Where a piece stands against a wall (`settle`, `relocate`).
     pub walls: WallsConfig,
@@ -93,8 +89,6 @@ pub struct RepairConfig {
     pub fit_into_room: FitIntoRoomConfig,
     /// `wide_seats`' settings.
     pub wide_seats: WideSeatsConfig,
-    /// `off_bodies`' settings.
-    pub off_bodies: OffBodiesConfig,
     /// `fit_to_bodies`' settings.
     pub fit_to_bodies: FitToBodiesConfig,
     /// `left_out`'s settings.
@@ -117,7 +111,6 @@ impl Default for RepairConfig {
             relocate: RelocateConfig::default(),
             fit_into_room: FitIntoRoomConfig::default(),
             wide_seats: WideSeatsConfig::default(),
-            off_bodies: OffBodiesConfig::default(),
             fit_to_bodies: FitToBodiesConfig::default(),
             left_out: LeftOutConfig::default(),
             keep_passing: true,
@@ -311,22 +304,6 @@ impl Default for WideSeatsConfig {
     }
 }
 
-/// `off_bodies`: pushing pieces out of the bones that enter them.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct OffBodiesConfig {
-    /// Clearance a push leaves past the deepest bone (m, default 0.01).
-    pub margin: f64,
-    /// Rounds of pushes at most (default 4).
-    pub rounds: usize,
-}
-
-impl Default for OffBodiesConfig {
-    fn default() -> OffBodiesConfig {
-        OffBodiesConfig { margin: 0.01, rounds: 4 }
-    }
-}
-
 /// `fit_to_bodies`: the changes tried on a piece that holds people and that bones enter.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -448,7 +425,6 @@ impl RepairConfig {
             ("narrowing.max", self.narrowing.max),
             ("relocate.max_move", self.relocate.max_move),
             ("wide_seats.margin", self.wide_seats.margin),
-            ("off_bodies.margin", self.off_bodies.margin),
             ("fit_to_bodies.min_gain", self.fit_to_bodies.min_gain),
             ("left_out.sits_at_reach", self.left_out.sits_at_reach),
             ("left_out.sits_at_above", self.left_out.sits_at_above),
@@ -494,7 +470,6 @@ impl RepairConfig {
         let counts = [
             ("settle.rounds", s.rounds),
             ("settle.pathless_rounds", s.pathless_rounds),
-            ("off_bodies.rounds", self.off_bodies.rounds),
             ("fit_to_bodies.rounds", self.fit_to_bodies.rounds),
             ("fit_to_bodies.categories_searched", self.fit_to_bodies.categories_searched),
             ("fit_into_room.cuts", self.fit_into_room.cuts),
@@ -525,7 +500,7 @@ mod tests {
     #[test]
     fn an_empty_object_is_the_default_pipeline() {
         assert_eq!(RepairConfig::from_json("{}").unwrap(), RepairConfig::default());
-        assert_eq!(RepairConfig::default().steps.len(), 8);
+        assert_eq!(RepairConfig::default().steps.len(), 7);
     }
 
     #[test]
@@ -545,7 +520,7 @@ mod tests {
         assert_eq!(field(r#"{"steps": ["settle", "polish"]}"#), "steps[1]");
         assert_eq!(field(r#"{"settle": {"max_step": 1e300}}"#), "settle.max_step");
         assert_eq!(field(r#"{"settle": {"covered": 1.5}}"#), "settle.covered");
-        assert_eq!(field(r#"{"off_bodies": {"rounds": 100000}}"#), "off_bodies.rounds");
+        assert_eq!(field(r#"{"fit_to_bodies": {"rounds": 100000}}"#), "fit_to_bodies.rounds");
         assert_eq!(field(r#"{"relocate": {"grid_step": 0}}"#), "relocate.grid_step");
         assert_eq!(field(r#"{"gap": -0.01}"#), "gap");
         assert_eq!(field(r#"{"holding": {"top_touch_height": "high"}}"#), "holding.top_touch_height");
@@ -555,6 +530,8 @@ mod tests {
         assert_eq!(field(r#"{"bed_swap": {"keep_cover": 0.9}}"#), "bed_swap");
         assert_eq!(field(r#"{"steps": ["deep_seats"]}"#), "steps[0]");
         assert_eq!(field(r#"{"sofas_to_sleepers": {"off_middle": 0.03}}"#), "sofas_to_sleepers");
+        assert_eq!(field(r#"{"steps": ["settle", "off_bodies"]}"#), "steps[1]");
+        assert_eq!(field(r#"{"off_bodies": {"rounds": 4}}"#), "off_bodies");
         assert_eq!(field(r#"{"fit_into_room": {"cuts": 5000}}"#), "fit_into_room.cuts");
         assert_eq!(field(r#"{"fit_to_bodies": {"margin": 0.03}}"#), "fit_to_bodies.margin");
         assert_eq!(field(r#"{"fit_to_bodies": {"max_tries": 1000000}}"#), "fit_to_bodies.max_tries");

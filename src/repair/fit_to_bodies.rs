@@ -1,12 +1,12 @@
 //! `fit_to_bodies` (ours): pieces that bones still enter reshaped, a few centimetres at a time,
 //! until the bodies around them stop entering them.
 //!
-//! `off_bodies` pushes the pieces that hold nobody by the deepest bone, in one direction; a seat,
-//! bed or table somebody uses stays where `settle` fitted it under its people. When the model's
-//! piece is a little too shallow, too narrow, too tall or in the wrong place for the bodies around
-//! it — a sitter's back in a loveseat's backrest and their shins in its front, a walker's hip
-//! through the end of the sofa they pass, a diner's thigh under a table top wedged between two
-//! others — neither mends it. This step searches, for each piece a bone still enters deeper than
+//! `settle` keeps pieces off people's paths by a height map and fits seats, beds and tables under
+//! the people they hold, but a piece a little too shallow, too narrow, too tall or in the wrong
+//! place for the bodies around it — a sitter's back in a loveseat's backrest and their shins in
+//! its front, a walker's hip through the end of the sofa they pass, a diner's thigh under a table
+//! top wedged between two others, a cabinet's front in the person standing before it — is only
+//! found by replaying the bodies against the pieces' parts. This step searches, for each piece a bone still enters deeper than
 //! the check's tolerance, the small changes of its box: moving it along its own axes, moving one
 //! of its four sides or its top in or out, or turning it about its centre so that its corners
 //! move, by each of [`FitToBodiesConfig::steps`](super::config::FitToBodiesConfig::steps). It
@@ -272,7 +272,6 @@ impl RepairStep for FitToBodies {
 
     fn run(&self, scene: &mut Scene, work: &mut Workspace<'_>, config: &RepairConfig) -> StepReport {
         let physics = work.physics;
-        // The bones `off_bodies` left, as `left_out` takes them.
         let contacts = match work.bones.take() {
             Some(bones) => bones,
             None => physics.exact_contacts(scene, PHYS_TOLERANCE),
@@ -424,5 +423,49 @@ mod tests {
         }
         let fit = SimPhysics.piece_fit(&scene, 0, PHYS_TOLERANCE);
         assert_eq!(fit, PieceFit { depth: 0.0, unsupported });
+    }
+
+    /// A room from y = `south` to 3 m, 4 m wide, a person standing at (2, 1.5) and a real-sized
+    /// cabinet (holding nobody) south of them, its north face as far into them as makes the deepest bone
+    /// 5–6 cm deep.
+    fn cabinet_into_a_stander(south: f64) -> Scene {
+        use crate::human::{Body, Motion, stand};
+        let mut scene = generate_room(RoomType::Living, 3, 0, false).scene;
+        scene.floor_plan.polygon = vec![[0.0, south], [4.0, south], [4.0, 3.0], [0.0, 3.0]];
+        let body = Body::default();
+        let mut m = Motion::new(body, 30.0);
+        m.hold(stand(&body, DVec2::new(2.0, 1.5), 0.0), 3, Action::Stand);
+        scene.humans = vec![m.into_human("h0")];
+        for k in 0..200 {
+            let north = 1.2 + 0.002 * k as f64;
+            let size = [1.0, 0.55, 0.8];
+            let center = [2.0, north - size[1] * 0.5, size[2] * 0.5];
+            scene.objects = vec![Object { id: "o0".into(), category: Category::Cabinet, center, size, yaw: 0.0 }];
+            if deepest_in(&scene, 0) > 0.05 {
+                return scene;
+            }
+        }
+        panic!("the cabinet never reaches the person");
+    }
+
+    #[test]
+    fn a_cabinet_in_a_standing_person_comes_out_of_them_and_against_its_wall_loses_depth_instead() {
+        // Free to move: it comes out of the person, a cabinet still, no bigger.
+        let mut scene = cabinet_into_a_stander(0.0);
+        let before = scene.objects[0].clone();
+        assert_eq!(fit(&mut scene, &RepairConfig::default()), 1);
+        let o = &scene.objects[0];
+        assert!(deepest_in(&scene, 0) <= PHYS_TOLERANCE, "{}", deepest_in(&scene, 0));
+        assert_eq!(o.category, Category::Cabinet);
+        assert!((0..3).all(|k| o.size[k] <= before.size[k] + 1e-9), "{o:?}");
+        // Its back on the south wall: it cannot move back, so its front comes in.
+        let back = before.center[1] - before.size[1] * 0.5;
+        let mut scene = cabinet_into_a_stander(back);
+        assert_eq!(scene.objects[0], before);
+        assert_eq!(fit(&mut scene, &RepairConfig::default()), 1);
+        let o = &scene.objects[0];
+        assert!(deepest_in(&scene, 0) <= PHYS_TOLERANCE, "{}", deepest_in(&scene, 0));
+        assert!(o.center[1] - o.size[1] * 0.5 >= back - 1e-9, "{o:?}");
+        assert!(o.size[1] < before.size[1] - 0.02 && o.size[1] >= size_range(Category::Cabinet, 1).0 - 1e-9, "{o:?}");
     }
 }

@@ -222,11 +222,6 @@ pub fn max_cut(size: f64, limits: &NarrowingConfig) -> f64 {
     limits.max.min(limits.max_share * size)
 }
 
-/// Whether `after` is narrower than `before` in width and depth by no more than one cut may take.
-pub fn narrowed_within(before: &Object, after: &Object, limits: &NarrowingConfig) -> bool {
-    (0..2).all(|k| before.size[k] - after.size[k] <= max_cut(before.size[k], limits) + 1e-9)
-}
-
 /// Cuts `o` so that the side it would move away from by `m` (world) comes in by `m`, its other
 /// side staying put, if each cut along its own axes is at most [`max_cut`] there. Returns whether
 /// it cut.

@@ -1,6 +1,6 @@
 //! Leaving out a piece that people still pass through (ours, the `left_out` repair step).
 //!
-//! After the rounds, relocation and `off_bodies` have moved and narrowed what they could, a piece
+//! After the rounds, relocation and `fit_to_bodies` have moved and reshaped what they could, a piece
 //! that holds nobody and that a bone still enters deeper than the check's 2 cm is usually one the
 //! model stood where the room has no place for it: a sofa across two diners' legs, a second bed
 //! in a walkway, a wardrobe in the path to the door. Such a piece is taken out of the layout: a

@@ -13,7 +13,6 @@
 //! | `relocate` | a piece holding nobody still in people's way moved to a free spot | `relocate`, `walls`, `gap` |
 //! | `wide_seats` | a sofa whose people overhang its seat grows at that end | `wide_seats`, `gap` |
 //! | `fit_into_room` | a piece poking out of the floor plan is moved back or narrowed | `fit_into_room`, `narrowing`, `holding`, `gap` |
-//! | `off_bodies` | a piece holding nobody is pushed or narrowed out of the bones that enter it | `off_bodies`, `narrowing`, `gap` |
 //! | `fit_to_bodies` | a piece that bones still enter is moved, turned or reshaped a few centimetres at a time, everybody supported kept supported (a piece that holds people may become another category that affords what they do) | `fit_to_bodies`, `gap` |
 //! | `left_out` | a piece holding nobody that people still pass through is left out | `left_out` |
 //! | `overlaps` | overlaps that survive are narrowed away, or the smaller piece goes | `narrowing`, `gap` |
@@ -31,7 +30,6 @@ mod helpers;
 mod in_use;
 mod left_out;
 mod occupancy;
-mod off_bodies;
 mod overlaps;
 mod pipeline;
 mod relocate;
@@ -45,8 +43,7 @@ pub use clearance::Clearance;
 pub use completion::SeatGaps;
 pub use config::{
     CompletionConfig, FitIntoRoomConfig, FitToBodiesConfig, HoldingConfig, LeftOutConfig, NarrowingConfig,
-    OffBodiesConfig, RelocateConfig, RepairConfig, RepairConfigError, SettleConfig, StepName, WallsConfig,
-    WideSeatsConfig,
+    RelocateConfig, RepairConfig, RepairConfigError, SettleConfig, StepName, WallsConfig, WideSeatsConfig,
 };
 pub use occupancy::Occupancy;
 pub use pipeline::{Pipeline, RepairReport, RepairStep, RepairTotals, SettleReport, StepReport, Workspace};
@@ -61,7 +58,6 @@ pub fn step(name: StepName) -> Box<dyn RepairStep> {
         StepName::Relocate => Box::new(relocate::Relocate),
         StepName::WideSeats => Box::new(wide_seats::WideSeats),
         StepName::FitIntoRoom => Box::new(fit_into_room::FitIntoRoom),
-        StepName::OffBodies => Box::new(off_bodies::OffBodies),
         StepName::FitToBodies => Box::new(fit_to_bodies::FitToBodies),
         StepName::LeftOut => Box::new(left_out::LeftOut),
         StepName::Overlaps => Box::new(overlaps::Overlaps),

@@ -25,7 +25,7 @@ pub struct Workspace<'a> {
     /// Whether each object holds anybody, fixed when a step after `settle` first asks
     /// ([`Workspace::holds`]); `left_out` updates it for the steps after it.
     holds: Option<Vec<bool>>,
-    /// Bones still inside pieces after `off_bodies` (exact depths), for `left_out`.
+    /// Bones still inside pieces after `fit_to_bodies` (exact depths), for `left_out`.
     pub bones: Option<Vec<EngineContact>>,
     /// Physics, for the steps that ask where bodies enter pieces.
     pub physics: &'a dyn Physics,
@@ -73,11 +73,6 @@ pub enum StepReport {
         /// Pieces narrowed.
         narrowed: usize,
     },
-    /// `off_bodies`: pieces pushed or narrowed out of bones.
-    OffBodies {
-        /// Pieces pushed or narrowed.
-        pushed: usize,
-    },
     /// `fit_to_bodies`: pieces reshaped out of bones.
     FitToBodies {
         /// Pieces reshaped.
@@ -105,7 +100,6 @@ impl StepReport {
             StepReport::Relocate { relocated: n }
             | StepReport::WideSeats { widened: n }
             | StepReport::FitIntoRoom { narrowed: n }
-            | StepReport::OffBodies { pushed: n }
             | StepReport::FitToBodies { fitted: n }
             | StepReport::LeftOut { left_out: n } => n,
             StepReport::Overlaps { narrowed, removed } => narrowed + removed,
@@ -172,7 +166,6 @@ impl RepairReport {
                 StepReport::Relocate { relocated } => t.relocated += relocated,
                 StepReport::WideSeats { widened } => t.widened += widened,
                 StepReport::FitIntoRoom { narrowed } => t.narrowed += narrowed,
-                StepReport::OffBodies { pushed } => t.pushed += pushed,
                 StepReport::FitToBodies { fitted } => t.fitted += fitted,
                 StepReport::LeftOut { left_out } => t.left_out += left_out,
                 StepReport::Overlaps { narrowed, removed } => {
@@ -197,8 +190,6 @@ pub struct RepairTotals {
     pub widened: usize,
     /// Pieces narrowed (into the room, off paths, out of overlaps).
     pub narrowed: usize,
-    /// Pieces pushed or narrowed out of bones.
-    pub pushed: usize,
     /// Pieces reshaped out of bones.
     pub fitted: usize,
     /// Pieces left out.
@@ -217,7 +208,6 @@ impl std::iter::Sum for RepairTotals {
             relocated: a.relocated + t.relocated,
             widened: a.widened + t.widened,
             narrowed: a.narrowed + t.narrowed,
-            pushed: a.pushed + t.pushed,
             fitted: a.fitted + t.fitted,
             left_out: a.left_out + t.left_out,
             removed: a.removed + t.removed,
