@@ -100,6 +100,10 @@ pub struct TrainArgs {
     /// (0: every object alike). The validation loss stays unweighted.
     #[arg(long, default_value_t = 0.0)]
     pub category_balance: f64,
+    /// Input perturbation γ (DDPM-IP): every training input gets √(1 − ᾱ_t) γ ξ more noise than
+    /// its step says, the target unchanged (0: none). The validation loss stays unperturbed.
+    #[arg(long, default_value_t = 0.0)]
+    pub input_perturbation: f64,
     /// Gradient engine: fused (the hand-written pass on every core) or candle (autograd, the
     /// slower reference it is tested against).
     #[arg(long, default_value = "fused", value_parser = by_config_name::<Engine>)]
@@ -187,6 +191,11 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
         "--category-balance: must be a non-negative number"
     );
     opts.category_balance = args.category_balance;
+    anyhow::ensure!(
+        args.input_perturbation.is_finite() && (0.0..=1.0).contains(&args.input_perturbation),
+        "--input-perturbation: must be a number between 0 and 1"
+    );
+    opts.input_perturbation = args.input_perturbation;
     opts.engine = args.engine;
     opts.log_every = args.log_every;
     opts.val_every = args.val_every;

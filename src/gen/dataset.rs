@@ -257,6 +257,18 @@ impl NoisyBatch {
         NoisyBatch { host, t, noise, target, noisy, loss_weights, self_condition }
     }
 
+    /// Input perturbation (Ning et al. 2023, DDPM-IP): adds √(1 − ᾱ_t) γ ξ to the noisy tokens, ξ
+    /// drawn from `rng` after everything [`draw`](Self::draw) drew, and leaves the noise and the
+    /// target as they were. The denoiser so learns to take inputs a little off the noise level
+    /// it is told, as its own earlier steps give it when sampling (exposure bias).
+    pub fn perturb_input(&mut self, gamma: f64, schedule: &Schedule, rng: &mut Rng) {
+        let per_item = self.noisy.len() / self.host.size.max(1);
+        for (k, x) in self.noisy.iter_mut().enumerate() {
+            let ab = schedule.alpha_bars[self.t[k / per_item]];
+            *x += ((1.0 - ab).sqrt() * gamma * rng.normal()) as f32;
+        }
+    }
+
     /// The loss's denominator: the sum of the host's loss weights (before any Min-SNR weight), at
     /// least 1.
     pub fn weight_total(&self) -> f32 {
@@ -269,6 +281,34 @@ mod tests {
     use super::*;
     use crate::data::{SplitStats, generate_room};
     use crate::scene::{Category, Object, RoomType};
+
+    #[test]
+    fn input_perturbation_moves_the_noisy_tokens_by_gamma_times_the_noise_and_nothing_else() {
+        let cfg = ModelConfig::tiny(RoomType::Bedroom);
+        let scenes: Vec<Scene> = (0..8).map(|i| generate_room(RoomType::Bedroom, 3, i, false).scene).collect();
+        let mut stats = SplitStats::default();
+        scenes.iter().for_each(|s| stats.add(s));
+        let bounds = Bounds::from_stats(&stats);
+        let mut host = HostBatch::default();
+        scenes.iter().for_each(|s| host.push(&Example::of(s, &bounds, &cfg), &cfg));
+        let schedule = Schedule::linear(cfg.diffusion_steps);
+        let plain = NoisyBatch::draw(host.clone(), &schedule, &mut Rng::new(4), &cfg);
+        let mut rng = Rng::new(4);
+        let mut moved = NoisyBatch::draw(host, &schedule, &mut rng, &cfg);
+        moved.perturb_input(0.5, &schedule, &mut rng);
+        assert_eq!((&moved.noise, &moved.target, &moved.t), (&plain.noise, &plain.target, &plain.t));
+        // Each change over its step's √(1 − ᾱ_t) is γ ξ: mean 0, standard deviation γ.
+        let per_item = moved.noisy.len() / moved.t.len();
+        let z: Vec<f64> = (0..moved.noisy.len())
+            .map(|k| {
+                let ab = schedule.alpha_bars[moved.t[k / per_item]];
+                f64::from(moved.noisy[k] - plain.noisy[k]) / (1.0 - ab).sqrt()
+            })
+            .collect();
+        let mean = z.iter().sum::<f64>() / z.len() as f64;
+        let sd = (z.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / z.len() as f64).sqrt();
+        assert!(z.len() > 1000 && mean.abs() < 0.05 && (sd - 0.5).abs() < 0.05, "{mean} {sd} over {}", z.len());
+    }
 
     #[test]
     fn rare_categories_weigh_more_and_nothing_else_changes() {

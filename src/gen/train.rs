@@ -70,6 +70,9 @@ pub struct TrainOptions {
     /// Loss weight of rare categories' slots: (median share / share)^this (`balance_categories`);
     /// 0, the default, weighs every slot alike.
     pub category_balance: f64,
+    /// Input perturbation γ ([`NoisyBatch::perturb_input`]; 0, the default, none): each training
+    /// input gets √(1 − ᾱ_t) γ ξ more noise than its step says. Validation inputs get none.
+    pub input_perturbation: f64,
     /// Where gradients come from.
     pub engine: Engine,
 }
@@ -96,6 +99,7 @@ impl TrainOptions {
             resume: false,
             command: String::new(),
             category_balance: 0.0,
+            input_perturbation: 0.0,
             engine: Engine::Fused,
         }
     }
@@ -296,7 +300,10 @@ pub fn train(
     while step < opts.steps {
         let mut rng = Rng::for_item(opts.seed, step);
         let host = draw_batch(&train_set, opts.batch, &mut rng, cfg, true);
-        let batch = NoisyBatch::draw(host, &schedule, &mut rng, cfg);
+        let mut batch = NoisyBatch::draw(host, &schedule, &mut rng, cfg);
+        if opts.input_perturbation > 0.0 {
+            batch.perturb_input(opts.input_perturbation, &schedule, &mut rng);
+        }
         let lr = opts.lr_at(step);
         let (loss, grads) = engine.loss_and_grad(&params, &batch)?;
         loss_sum += loss;
