@@ -69,6 +69,11 @@ pub struct TrainArgs {
     /// preset's, true).
     #[arg(long)]
     pub wall_features: Option<bool>,
+    /// Whether every attention score gets a learned bias from the pair's relation (position and
+    /// yaw of one piece in the other's frame, distance): true or false (default: the preset's,
+    /// false).
+    #[arg(long)]
+    pub relation_bias: Option<bool>,
     /// Whether the model is self-conditioned on its previous clean estimate: true or false
     /// (default: the preset's, false; needs x0-prediction).
     #[arg(long)]
@@ -156,6 +161,9 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     }
     if let Some(wall_features) = args.wall_features {
         model.wall_features = wall_features;
+    }
+    if let Some(relation_bias) = args.relation_bias {
+        model.relation_bias = relation_bias;
     }
     if let Some(self_condition) = args.self_condition {
         model.self_condition = self_condition;
