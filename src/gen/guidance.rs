@@ -924,8 +924,6 @@ fn keep_real_size(t: &mut [f32], category: Category, margin: f64, bounds: &Bound
     }
 }
 
-/// ∂J/∂token (first 8 entries: centre, size, cos, sin) from ∂J/∂(world parameters).
-/// Heights are decoded from the size (floor or ceiling), so ∂J/∂cz is not passed on.
 /// The factor (≤ 1) that keeps a token step of `scale · step` within `cap` metres: the piece's
 /// centre moving at most `cap` on the floor and none of its sizes changing by more. Uncapped, a
 /// bed's height changed by 14.5 cm in one gradient step and crossed the 0.7 m at which its
@@ -943,6 +941,8 @@ fn capped(step: &[f64; 8], scale: f64, cap: f64, bounds: &Bounds) -> f64 {
     if moved > cap { cap / moved } else { 1.0 }
 }
 
+/// ∂J/∂token (first 8 entries: centre, size, cos, sin) from ∂J/∂(world parameters).
+/// Heights are decoded from the size (floor or ceiling), so ∂J/∂cz is not passed on.
 fn token_gradient(t: &[f32], g: &ObjectGradient, bounds: &Bounds) -> [f64; 8] {
     let half = |lo: f64, hi: f64| (hi - lo) * 0.5;
     let mut out = [0.0; 8];
