@@ -15,7 +15,7 @@ mod common;
 use common::fastest;
 use shade_sim::data::Rng;
 use shade_sim::generator::{
-    AdamW, AdamWConfig, Bounds, CondTensors, Denoiser, Engine, FastDenoiser, Features, Gradients, Guidance,
+    AdamW, AdamWConfig, Bounds, Chain, CondTensors, Denoiser, Engine, FastDenoiser, Features, Gradients, Guidance,
     GuidanceConfig, HostBatch, ModelConfig, NoisyBatch, ParamLayout, Params, Projection, Schedule, SpatialGuidance,
     empty_projection_steps, sample, tokens,
 };
@@ -54,7 +54,7 @@ struct Setup {
     params: Vec<f32>,
     schedule: Schedule,
     /// Every step (DDPM's chain).
-    visited: Vec<usize>,
+    chain: Chain,
 }
 
 fn setup() -> Setup {
@@ -65,8 +65,8 @@ fn setup() -> Setup {
     let (layout, params) = ParamLayout::of(&init.snapshot().unwrap()).unwrap();
     let shipped = shade_sim::generator::shipped_model(RoomType::Bedroom).unwrap().denoiser;
     let schedule = Schedule::linear(cfg.diffusion_steps);
-    let visited = schedule.respaced(schedule.steps());
-    Setup { schedule, visited, cfg, layout, params, shipped }
+    let chain = Chain::full(&schedule);
+    Setup { schedule, chain, cfg, layout, params, shipped }
 }
 
 /// A training run's state: an engine, the parameters and the optimiser.
@@ -91,7 +91,7 @@ fn sample_once(s: &Setup, rng: &mut Rng) {
     let seeds: Vec<u64> = (0..SAMPLE_BATCH as u64).collect();
     let projection = empty_projection_steps(&s.schedule);
     black_box(
-        sample(&s.shipped, &s.schedule, &s.visited, &cond, &seeds, &Projection::empty_slots(projection), None).unwrap(),
+        sample(&s.shipped, &s.schedule, &s.chain, &cond, &seeds, &Projection::empty_slots(projection), None).unwrap(),
     );
 }
 

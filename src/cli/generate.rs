@@ -55,6 +55,11 @@ pub struct GenerateArgs {
     /// spaced steps; faster, and a v model keeps its precision; default: T).
     #[arg(long)]
     pub sampling_steps: Option<usize>,
+    /// How much of DDPM's fresh noise each step draws (DDIM's η, 0 to 2): 1 is DDPM's ancestral
+    /// sampler, 0 the deterministic DDIM sampler, above 1 more fresh noise than DDPM's posterior
+    /// (docs/RESULTS.md, "DDIM").
+    #[arg(long, default_value_t = 1.0)]
+    pub eta: f64,
     /// With a count-conditioned model: condition each layout on the input's own pieces per
     /// category instead of a draw from the model's count prior (furnish a room with the pieces
     /// it has; the input's pieces are replaced as always).
@@ -145,6 +150,7 @@ pub fn load_model(custom: Option<&Checkpoint>, room: RoomType, input: &Path) -> 
 pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     anyhow::ensure!(args.samples > 0, "--samples: must be at least 1");
     anyhow::ensure!(args.sampling_steps.is_none_or(|n| n >= 2), "--sampling-steps: must be at least 2");
+    anyhow::ensure!((0.0..=2.0).contains(&args.eta), "--eta: must be between 0 and 2, not {}", args.eta);
     let files = if args.input.is_dir() { super::eval::scene_files(&args.input)? } else { vec![args.input.clone()] };
     let inputs: Vec<Scene> = files.iter().map(Scene::load).collect::<Result<_, _>>()?;
     let opts = LayoutOptions {
@@ -171,6 +177,7 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
                 "--input-counts: the {room} model has no count conditioning (train one with --count-condition)"
             );
             let generator = if args.input_counts { generator.with_input_counts() } else { generator };
+            let generator = if args.eta == 1.0 { generator } else { generator.with_eta(args.eta) };
             Ok(match args.sampling_steps {
                 Some(n) => generator.with_sampling_steps(n),
                 None => generator,

@@ -69,6 +69,10 @@ pub struct TrainArgs {
     /// preset's, true).
     #[arg(long)]
     pub wall_features: Option<bool>,
+    /// Fourier features of the noisy tokens in this many octaves, the finest 1/2^N of a token
+    /// unit (docs/RESULTS.md, "Fourier features"; default: the preset's, 0 = none).
+    #[arg(long)]
+    pub fourier_bands: Option<usize>,
     /// Whether every attention score gets a learned bias from the pair's relation (position and
     /// yaw of one piece in the other's frame, distance): true or false (default: the preset's,
     /// false).
@@ -161,6 +165,9 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     }
     if let Some(wall_features) = args.wall_features {
         model.wall_features = wall_features;
+    }
+    if let Some(bands) = args.fourier_bands {
+        model.fourier_bands = bands;
     }
     if let Some(relation_bias) = args.relation_bias {
         model.relation_bias = relation_bias;

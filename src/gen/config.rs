@@ -60,6 +60,11 @@ pub struct ModelConfig {
     /// Off in older configs.
     #[serde(default)]
     pub wall_features: bool,
+    /// Fourier features of the noisy tokens ([`super::fourier`]): every object token also gets an
+    /// embedding of sin and cos of 2ᵏπ x, k = 1 … this, of each continuous attribute x. 0 (older
+    /// configs): none.
+    #[serde(default)]
+    pub fourier_bands: usize,
     /// What the denoiser predicts: the noise ε (DDPM's choice, every model before it) or the clean
     /// tokens x₀. Older configs read as ε.
     #[serde(default)]
@@ -203,6 +208,7 @@ impl ModelConfig {
             anchored_yaw: AnchoredYaw::World,
             relation_bias: false,
             wall_features: true,
+            fourier_bands: 0,
             prediction: Prediction::X0,
             schedule: NoiseSchedule::Linear,
             self_condition: false,
@@ -247,6 +253,7 @@ impl ModelConfig {
             anchored_yaw: AnchoredYaw::World,
             relation_bias: true,
             wall_features: true,
+            fourier_bands: 0,
             prediction: Prediction::X0,
             schedule: NoiseSchedule::Linear,
             self_condition: false,
@@ -335,6 +342,9 @@ impl ModelConfig {
                 self.max_contacts,
                 self.slots()
             ));
+        }
+        if self.fourier_bands > super::fourier::MAX_BANDS {
+            return Some(format!("fourier_bands {} is over {}", self.fourier_bands, super::fourier::MAX_BANDS));
         }
         if self.self_condition && self.prediction != Prediction::X0 {
             return Some("self_condition needs prediction x0".into());

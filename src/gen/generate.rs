@@ -4,7 +4,7 @@
 use super::count_prior::contact_kinds;
 use super::count_projection::{CountRule, CountTargets};
 use super::dataset::HostBatch;
-use super::sampler::{Guidance, Projection, empty_projection_steps, sample};
+use super::sampler::{Chain, Guidance, Projection, empty_projection_steps, sample};
 use super::{Checkpoint, Features, GenError, Schedule, tokens};
 use crate::data::Rng;
 use crate::human::Conditions;
@@ -25,8 +25,8 @@ pub struct Generator {
     /// The model.
     pub checkpoint: Checkpoint,
     schedule: Schedule,
-    /// The steps the sampler visits ([`Schedule::respaced`]; all T by default).
-    visited: Vec<usize>,
+    /// The steps the sampler visits ([`Schedule::respaced`]; all T by default) and its η (1).
+    chain: Chain,
     empty_projection: bool,
     input_counts: bool,
     seen_counts: bool,
@@ -36,16 +36,23 @@ impl Generator {
     /// A generator over `checkpoint`.
     pub fn new(checkpoint: Checkpoint) -> Generator {
         let schedule = Schedule::of(&checkpoint.meta.model);
-        let visited = schedule.respaced(schedule.steps());
-        Generator { checkpoint, schedule, visited, empty_projection: true, input_counts: false, seen_counts: true }
+        let chain = Chain::full(&schedule);
+        Generator { checkpoint, schedule, chain, empty_projection: true, input_counts: false, seen_counts: true }
     }
 
     /// The same generator sampling with `n` model calls instead of T: the chain respaced to `n`
     /// evenly spaced steps ([`Schedule::respaced`]); guidance and the empty-slot projection still
     /// act by noise level.
     pub fn with_sampling_steps(self, n: usize) -> Generator {
-        let visited = self.schedule.respaced(n);
-        Generator { visited, ..self }
+        let chain = Chain { visited: self.schedule.respaced(n), ..self.chain };
+        Generator { chain, ..self }
+    }
+
+    /// The same generator drawing `eta` of DDPM's fresh noise at each step ([`Schedule::jump`]):
+    /// 0 is the deterministic DDIM sampler, 1 (the default) DDPM's ancestral one.
+    pub fn with_eta(self, eta: f64) -> Generator {
+        let chain = Chain { eta, ..self.chain };
+        Generator { chain, ..self }
     }
 
     /// The same generator without the sampler's empty-slot projection, nor its count projection
@@ -175,7 +182,7 @@ impl Generator {
             let tokens = sample(
                 &self.checkpoint.denoiser,
                 &self.schedule,
-                &self.visited,
+                &self.chain,
                 &cond,
                 &seeds,
                 &projection,

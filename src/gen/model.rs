@@ -10,6 +10,7 @@
 //! This module only maps tensors to tensors; tokens, features and sampling live beside it.
 
 use super::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES, RELATION_HIDDEN, TIME_FEATURES};
+use super::fourier;
 use super::params::{Init, Linear, Params, layer_norm};
 use super::relations::{self, RELATION_FEATURES};
 use super::walls::{self, WALL_FEATURES};
@@ -131,6 +132,8 @@ pub struct Denoiser {
     pub(super) relation: Option<[Linear; 2]>,
     /// With wall features: the embedding of a slot's wall distances, added to its token.
     pub(super) walls: Option<Linear>,
+    /// With Fourier features: the embedding of a slot's sines and cosines, added to its token.
+    pub(super) fourier: Option<Linear>,
     /// With self-conditioning: the embedding of the previous clean estimate of a slot, added to
     /// its token.
     pub(super) estimate: Option<Linear>,
@@ -177,6 +180,10 @@ impl Denoiser {
             walls: match cfg.wall_features {
                 true => Some(p.linear("walls", WALL_FEATURES, d, false)?),
                 false => None,
+            },
+            fourier: match cfg.fourier_bands {
+                0 => None,
+                _ => Some(p.linear("fourier", fourier::features_per_slot(cfg), d, false)?),
             },
             estimate: match cfg.self_condition {
                 true => Some(p.linear("estimate", cfg.token_dim(), d, true)?),
@@ -251,6 +258,12 @@ impl Denoiser {
         }
         if let Some(walls) = &self.walls {
             h = (h + walls.forward(&self.wall_features(x, cond)?)?)?;
+        }
+        if let Some(layer) = &self.fourier {
+            let (b, slots, _) = x.dims3()?;
+            let features = fourier::slot_features(&self.cfg, &x.flatten_all()?.to_vec1::<f32>()?);
+            let width = fourier::features_per_slot(&self.cfg);
+            h = (h + layer.forward(&Tensor::from_vec(features, (b, slots, width), x.device())?)?)?;
         }
         if let Some(layer) = &self.estimate {
             let zeros;

@@ -1,6 +1,6 @@
-//! DDPM ancestral sampling with the guidance hook: at every step the clean estimate x̂0 (from the
-//! predicted noise, clamped to [-1, 1]) may be replaced by a guided x̃0 before the posterior mean
-//! is formed (DESIGN.md, "Guidance at step t"). In the last steps, slots whose x̂0 reads "empty" get
+//! DDPM ancestral sampling (or DDIM's, [`Chain::eta`]) with the guidance hook: at every step the
+//! clean estimate x̂0 (from the model's output, clamped to [-1, 1]) may be replaced by a guided x̃0
+//! before the next step is formed (DESIGN.md, "Guidance at step t"). In the last steps, slots whose x̂0 reads "empty" get
 //! the zero attributes the training data has there ([`empty_projection_steps`]), after the slots'
 //! classes are matched to the counts the item must hold ([`super::count_projection`]).
 //!
@@ -43,14 +43,30 @@ impl Projection {
     }
 }
 
-/// Samples a batch; `seeds[i]` drives item i, visiting the steps `visited` (ascending, from
-/// [`Schedule::respaced`]; all T for DDPM's chain) from the last down, projecting x̂0 in the last
+/// The steps a sampler visits and how much fresh noise each jump draws.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Chain {
+    /// The steps visited, ascending ([`Schedule::respaced`]; all T for DDPM's chain).
+    pub visited: Vec<usize>,
+    /// DDIM's η ([`Schedule::jump`]): 1 draws DDPM's posterior noise at every jump (the default),
+    /// 0 none (the deterministic DDIM sampler).
+    pub eta: f64,
+}
+
+impl Chain {
+    /// DDPM's chain over all of `schedule`'s steps.
+    pub fn full(schedule: &Schedule) -> Chain {
+        Chain { visited: schedule.respaced(schedule.steps()), eta: 1.0 }
+    }
+}
+
+/// Samples a batch; `seeds[i]` drives item i, visiting `chain`'s steps from the last down, projecting x̂0 in the last
 /// steps as `projection` says. Returns the tokens in world form (B × slots × token_dim); the
 /// diffusion itself runs in the model's frame ([`anchors`]), and the guidance sees world tokens.
 pub fn sample(
     model: &Denoiser,
     schedule: &Schedule,
-    visited: &[usize],
+    chain: &Chain,
     cond: &CondTensors,
     seeds: &[u64],
     projection: &Projection,
@@ -83,6 +99,7 @@ pub fn sample(
     let fast = FastDenoiser::of(model)?;
     let mut prepared = fast.prepare(cond)?;
     let mut x = gaussian(&mut rngs)?;
+    let visited = &chain.visited;
     for (i, &t) in visited.iter().enumerate().rev() {
         let noisy: Vec<f32> = x.flatten_all()?.to_vec1()?;
         let out = fast.forward(&mut prepared, &noisy, t);
@@ -103,10 +120,11 @@ pub fn sample(
             Some(g) => frame(&g.guide(&frame(&x0, false)?, t)?, true)?,
             None => x0,
         };
-        let (c0, ct, var) = schedule.posterior_to(t, i.checked_sub(1).map(|j| visited[j]));
+        let (c0, ct, var) = schedule.jump(t, i.checked_sub(1).map(|j| visited[j]), chain.eta);
         let mean = ((x0 * c0)? + (&x * ct)?)?;
-        // Detached so that nothing (a guidance gradient) chains the steps' graphs.
-        x = if i > 0 { (mean + (gaussian(&mut rngs)? * var.sqrt())?)? } else { mean }.detach();
+        // Detached so that nothing (a guidance gradient) chains the steps' graphs. DDIM's chain
+        // (η 0) draws nothing after its start.
+        x = if i > 0 && var > 0.0 { (mean + (gaussian(&mut rngs)? * var.sqrt())?)? } else { mean }.detach();
     }
     Ok(frame(&x, false)?.flatten_all()?.to_vec1::<f32>()?)
 }

@@ -117,6 +117,24 @@ impl Schedule {
         (c0, ct, var)
     }
 
+    /// The jump from step `t` to the earlier step `s` (`None`: the clean data) of DDIM's family
+    /// (Song et al. 2021, eq. 12) with fresh noise `eta`: x_s = c0 x̂0 + ct x_t + √var z, var =
+    /// η² times DDPM's posterior variance, and the rest of the noise step s needs taken from x_t's
+    /// own. `eta` 0 is the deterministic DDIM sampler; `eta` 1 is DDPM's posterior, returned as
+    /// [`posterior_to`](Self::posterior_to) computes it, so a DDPM chain is unchanged to the bit;
+    /// above 1 more noise is drawn anew, at most all of step s's (x̂0 noised afresh, ct 0).
+    pub fn jump(&self, t: usize, s: Option<usize>, eta: f64) -> (f64, f64, f64) {
+        if eta == 1.0 {
+            return self.posterior_to(t, s);
+        }
+        let ab = self.alpha_bars[t];
+        let ab_s = s.map_or(1.0, |s| self.alpha_bars[s]);
+        let var = (eta * eta * (1.0 - ab_s) / (1.0 - ab) * (1.0 - ab / ab_s)).min(1.0 - ab_s);
+        let ct = (1.0 - ab_s - var).max(0.0).sqrt() / (1.0 - ab).sqrt();
+        let c0 = ab_s.sqrt() - ct * ab.sqrt();
+        (c0, ct, var)
+    }
+
     /// The steps a sampler with `n` model calls visits, ascending: `n` steps evenly spaced from 0
     /// to T − 1 (every step when `n` ≥ T; at least 0 and T − 1, so the chain still starts at pure
     /// noise and ends at the least noise).
@@ -201,6 +219,35 @@ mod tests {
             let xt = s.alpha_bars[t].sqrt() * x0;
             let mean = c0 * x0 + ct * xt;
             assert!((mean - s.alpha_bars[t - 1].sqrt() * x0).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn a_ddim_jump_is_ddpm_at_eta_one_and_follows_the_noise_at_eta_zero() {
+        for s in [Schedule::linear(200), Schedule::log_snr(200), Schedule::cosine(200)] {
+            for (t, to) in [(199, Some(150)), (150, Some(50)), (60, Some(59)), (3, None)] {
+                // η 1 is DDPM's posterior: the general formula agrees with it.
+                let (ab, ab_s) = (s.alpha_bars[t], to.map_or(1.0, |k| s.alpha_bars[k]));
+                let (c0, ct, var) = s.posterior_to(t, to);
+                let var1 = (1.0 - ab_s) / (1.0 - ab) * (1.0 - ab / ab_s);
+                let ct1 = (1.0 - ab_s - var1).max(0.0).sqrt() / (1.0 - ab).sqrt();
+                let c01 = ab_s.sqrt() - ct1 * ab.sqrt();
+                assert!((c0 - c01).abs() < 1e-9 && (ct - ct1).abs() < 1e-9 && (var - var1).abs() < 1e-12, "{t}");
+                assert_eq!(s.jump(t, to, 1.0), (c0, ct, var));
+                // η 0: no fresh noise, and x_t = √ᾱ_t x0 + √(1 − ᾱ_t) ε with x̂0 = x0 lands on
+                // x_s = √ᾱ_s x0 + √(1 − ᾱ_s) ε, the same ε (x0 = 0.7, ε = −1.3).
+                let (c0, ct, var) = s.jump(t, to, 0.0);
+                assert_eq!(var, 0.0);
+                let xt = ab.sqrt() * 0.7 + (1.0 - ab).sqrt() * -1.3;
+                let want = ab_s.sqrt() * 0.7 + (1.0 - ab_s).sqrt() * -1.3;
+                assert!((c0 * 0.7 + ct * xt - want).abs() < 1e-9, "{t}: {} vs {want}", c0 * 0.7 + ct * xt);
+                // The variance grows as η², up to all the noise of step s, where nothing of x_t
+                // is kept.
+                let (_, _, half) = s.jump(t, to, 0.5);
+                assert!((half - 0.25 * var1).abs() < 1e-12);
+                let (c0, ct, most) = s.jump(t, to, 1e3);
+                assert!((most - (1.0 - ab_s)).abs() < 1e-12 && ct == 0.0 && (c0 - ab_s.sqrt()).abs() < 1e-12);
+            }
         }
     }
 

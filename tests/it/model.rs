@@ -691,3 +691,34 @@ fn the_shipped_bedroom_model_keeps_to_the_nightstand_counts_its_data_has() {
     // Without the rule, sample 3 has three nightstands (its data: 0, 1 or 2).
     assert_eq!(unseen(Some("--unseen-counts")), [(3, "nightstand".to_string(), 3)]);
 }
+
+#[test]
+fn ddim_eta_one_is_the_ddpm_chain_and_eta_zero_is_deterministic() {
+    let input = Scene::load(root().join("scenes/examples/bedroom_rect.json")).unwrap();
+    let ddpm = Generator::new(shade_sim::generator::shipped_model(RoomType::Bedroom).unwrap());
+    let layouts = |g: &Generator, seed| g.generate(std::slice::from_ref(&input), 2, seed).unwrap().remove(0);
+    // η 1 is DDPM's posterior (Schedule::jump): the default chain to the bit.
+    assert_eq!(layouts(&ddpm.clone().with_eta(1.0), 4), layouts(&ddpm, 4));
+    // η 0 draws no noise after the start: the same seed gives the same rooms, other than DDPM's,
+    // respaced as well; each is a bedroom with pieces.
+    let ddim = ddpm.clone().with_eta(0.0);
+    let a = layouts(&ddim, 4);
+    assert_eq!(a, layouts(&ddim, 4));
+    assert_ne!(a, layouts(&ddpm, 4));
+    let fast = ddim.with_sampling_steps(25);
+    assert_eq!(layouts(&fast, 4), layouts(&fast, 4));
+    for room in a.iter().chain(&layouts(&fast, 4)) {
+        assert!(!room.objects.is_empty());
+        assert!(room.objects.iter().all(|o| RoomType::Bedroom.categories().contains(&o.category)));
+    }
+    // η outside [0, 2] is refused with one line.
+    for bad in ["2.5", "-0.1", "NaN"] {
+        let dir = tempfile::tempdir().unwrap();
+        let input = root().join("scenes/examples/bedroom_rect.json");
+        let eta = format!("--eta={bad}");
+        let args = ["generate", "--input", input.to_str().unwrap(), "--out", dir.path().to_str().unwrap(), &eta];
+        let o = shade_sim(&args);
+        assert_eq!(o.status.code(), Some(2), "{bad}");
+        assert!(stderr(&o).starts_with("error: --eta: must be between 0 and 2"), "{}", stderr(&o));
+    }
+}

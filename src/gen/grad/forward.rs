@@ -14,7 +14,7 @@ use super::{ChunkInputs, ConditionInputs, GradNet};
 use crate::generator::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES};
 use crate::generator::matmul::LinearAt;
 use crate::generator::model::time_feature_values;
-use crate::generator::{relations, walls};
+use crate::generator::{fourier, relations, walls};
 
 /// A PointNet's activations: ReLU outputs of the first two layers, the third's output and, per
 /// item, the max over the points.
@@ -197,6 +197,8 @@ pub(super) struct StepTape {
     pub(super) relation_bias: Vec<Vec<f32>>,
     /// With wall features: every object row's ([`walls::slot_features`]).
     pub(super) wall_in: Vec<f32>,
+    /// With Fourier features: every object row's ([`fourier::slot_features`]).
+    pub(super) fourier_in: Vec<f32>,
     /// With self-conditioning: the previous clean estimate of every object row (zeros: none).
     pub(super) estimate_in: Vec<f32>,
     /// Per block (items × 6d), then the final layer's (items × 2d).
@@ -248,6 +250,15 @@ impl StepTape {
             Some(walls) => {
                 let features = wall_features(net, cond, noisy);
                 let embedded = walls.map(p, &features);
+                h[..objects * d].iter_mut().zip(&embedded).for_each(|(v, e)| *v += e);
+                features
+            }
+            None => Vec::new(),
+        };
+        let fourier_in = match &net.fourier {
+            Some(layer) => {
+                let features = fourier::slot_features(cfg, noisy);
+                let embedded = layer.map(p, &features);
                 h[..objects * d].iter_mut().zip(&embedded).for_each(|(v, e)| *v += e);
                 features
             }
@@ -313,6 +324,7 @@ impl StepTape {
             relation_act,
             relation_bias,
             wall_in,
+            fourier_in,
             estimate_in,
             modulation,
             blocks,

@@ -51,6 +51,7 @@ pub struct GradNet {
     anchor: Option<LinearAt>,
     relation: Option<[LinearAt; 2]>,
     walls: Option<LinearAt>,
+    fourier: Option<LinearAt>,
     estimate: Option<LinearAt>,
     time: [LinearAt; 2],
     contact: [LinearAt; 2],
@@ -180,6 +181,10 @@ impl GradNet {
                 false => None,
             },
             walls: if cfg.wall_features { Some(linear("walls", WALL_FEATURES, d)?) } else { None },
+            fourier: match cfg.fourier_bands {
+                0 => None,
+                _ => Some(linear("fourier", super::fourier::features_per_slot(cfg), d)?),
+            },
             estimate: if cfg.self_condition { Some(linear("estimate", cfg.token_dim(), d)?) } else { None },
             time: [linear("time.0", super::config::TIME_FEATURES, d)?, linear("time.1", d, d)?],
             contact: [linear("contact.0", CONTACT_FEATURES, d)?, linear("contact.1", d, d)?],
