@@ -177,7 +177,7 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
                 "--input-counts: the {room} model has no count conditioning (train one with --count-condition)"
             );
             let generator = if args.input_counts { generator.with_input_counts() } else { generator };
-            let generator = if args.eta == 1.0 { generator } else { generator.with_eta(args.eta) };
+            let generator = generator.with_eta(args.eta);
             Ok(match args.sampling_steps {
                 Some(n) => generator.with_sampling_steps(n),
                 None => generator,

@@ -13,7 +13,7 @@
 use super::ModelConfig;
 use super::tokens::CLASS_OFFSET;
 
-/// The most bands a config may ask for: 2¹⁶π is far below a float's resolution of a token.
+/// The most bands a config may ask for: beyond 2¹⁶π x, the phase is mostly the float rounding of x.
 pub const MAX_BANDS: usize = 16;
 
 /// Features per object slot.

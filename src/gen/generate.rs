@@ -48,8 +48,9 @@ impl Generator {
         Generator { chain, ..self }
     }
 
-    /// The same generator drawing `eta` of DDPM's fresh noise at each step ([`Schedule::jump`]):
-    /// 0 is the deterministic DDIM sampler, 1 (the default) DDPM's ancestral one.
+    /// The same generator drawing `eta` times DDPM's fresh noise at each step
+    /// ([`Schedule::jump`]): 0 is the deterministic DDIM sampler, 1 (the default) DDPM's ancestral
+    /// one, above 1 more noise drawn afresh.
     pub fn with_eta(self, eta: f64) -> Generator {
         let chain = Chain { eta, ..self.chain };
         Generator { chain, ..self }
