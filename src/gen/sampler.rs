@@ -1,8 +1,9 @@
 //! DDPM ancestral sampling (or DDIM's, [`Chain::eta`]) with the guidance hook: at every step the
 //! clean estimate x̂0 (from the model's output, clamped to [-1, 1]) may be replaced by a guided x̃0
-//! before the next step is formed (DESIGN.md, "Guidance at step t"). In the last steps, slots whose x̂0 reads "empty" get
-//! the zero attributes the training data has there ([`empty_projection_steps`]), after the slots'
-//! classes are matched to the counts the item must hold ([`super::count_projection`]).
+//! before the next step is formed (DESIGN.md, "Guidance at step t"). In the last steps, slots
+//! whose x̂0 reads "empty" get the zero attributes the training data has there
+//! ([`empty_projection_steps`]), after the slots' classes are matched to the counts the item must
+//! hold ([`super::count_projection`]).
 //!
 //! Noise comes from the crate's seeded generator, one stream per batch item, and the denoiser runs
 //! as [`FastDenoiser`] (conditions encoded once, no item's numbers depending on another's), so item i of a seed is the
@@ -49,7 +50,7 @@ pub struct Chain {
     /// The steps visited, ascending ([`Schedule::respaced`]; all T for DDPM's chain).
     pub visited: Vec<usize>,
     /// DDIM's η ([`Schedule::jump`]): 1 draws DDPM's posterior noise at every jump (the default),
-    /// 0 none (the deterministic DDIM sampler).
+    /// 0 none (the deterministic DDIM sampler), above 1 more than DDPM's.
     pub eta: f64,
 }
 
@@ -60,8 +61,8 @@ impl Chain {
     }
 }
 
-/// Samples a batch; `seeds[i]` drives item i, visiting `chain`'s steps from the last down, projecting x̂0 in the last
-/// steps as `projection` says. Returns the tokens in world form (B × slots × token_dim); the
+/// Samples a batch; `seeds[i]` drives item i, visiting `chain`'s steps from the last down,
+/// projecting x̂0 in the last steps as `projection` says. Returns the tokens in world form (B × slots × token_dim); the
 /// diffusion itself runs in the model's frame ([`anchors`]), and the guidance sees world tokens.
 pub fn sample(
     model: &Denoiser,
