@@ -7,6 +7,8 @@
 # (scripts/build_python.sh), installs it in .venv and runs the Python tests (python/tests).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# One build per run: incremental caches would add gigabytes to a clean checkout's target folder.
+export CARGO_INCREMENTAL="${CARGO_INCREMENTAL:-0}"
 
 if ! cargo fmt --version >/dev/null 2>&1 || ! cargo clippy --version >/dev/null 2>&1; then
     rustup component add rustfmt clippy
