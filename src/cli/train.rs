@@ -73,6 +73,11 @@ pub struct TrainArgs {
     /// unit (docs/RESULTS.md, "Fourier features"; default: the preset's, 0 = none).
     #[arg(long)]
     pub fourier_bands: Option<usize>,
+    /// Whether object tokens get the embedding of the gaps ahead of their piece's faces to the
+    /// nearest other piece, measured in metres with the data's bounds (docs/RESULTS.md, "Gaps
+    /// between pieces"): true or false (default: the preset's, false).
+    #[arg(long)]
+    pub gap_features: Option<bool>,
     /// Whether every attention score gets a learned bias from the pair's relation (position and
     /// yaw of one piece in the other's frame, distance): true or false (default: the preset's,
     /// false).
@@ -168,6 +173,12 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     }
     if let Some(bands) = args.fourier_bands {
         model.fourier_bands = bands;
+    }
+    if let Some(gaps) = args.gap_features {
+        model.gap_bounds = match gaps {
+            true => Some(shade_sim::generator::data_bounds(&args.data)?),
+            false => None,
+        };
     }
     if let Some(relation_bias) = args.relation_bias {
         model.relation_bias = relation_bias;

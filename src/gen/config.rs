@@ -1,5 +1,6 @@
 //! Model configuration: widths, depths, condition sizes and the diffusion length, with presets.
 
+use super::tokens::Bounds;
 use crate::scene::RoomType;
 use serde::{Deserialize, Serialize};
 
@@ -65,6 +66,12 @@ pub struct ModelConfig {
     /// configs): none.
     #[serde(default)]
     pub fourier_bands: usize,
+    /// Gaps between pieces ([`super::gaps`]): every object token also gets an embedding of the
+    /// gaps ahead of its piece's four faces to the nearest other piece, measured on the noisy
+    /// tokens in metres with these bounds (the training data's, as the checkpoint's own). None
+    /// (older configs): no gap features.
+    #[serde(default)]
+    pub gap_bounds: Option<Bounds>,
     /// What the denoiser predicts: the noise ε (DDPM's choice, every model before it) or the clean
     /// tokens x₀. Older configs read as ε.
     #[serde(default)]
@@ -209,6 +216,7 @@ impl ModelConfig {
             relation_bias: false,
             wall_features: true,
             fourier_bands: 0,
+            gap_bounds: None,
             prediction: Prediction::X0,
             schedule: NoiseSchedule::Linear,
             self_condition: false,
@@ -254,6 +262,7 @@ impl ModelConfig {
             relation_bias: true,
             wall_features: true,
             fourier_bands: 0,
+            gap_bounds: None,
             prediction: Prediction::X0,
             schedule: NoiseSchedule::Linear,
             self_condition: false,

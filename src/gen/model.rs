@@ -11,6 +11,7 @@
 
 use super::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES, RELATION_HIDDEN, TIME_FEATURES};
 use super::fourier;
+use super::gaps::{self, GAP_FEATURES};
 use super::params::{Init, Linear, Params, layer_norm};
 use super::relations::{self, RELATION_FEATURES};
 use super::walls::{self, WALL_FEATURES};
@@ -134,6 +135,8 @@ pub struct Denoiser {
     pub(super) walls: Option<Linear>,
     /// With Fourier features: the embedding of a slot's sines and cosines, added to its token.
     pub(super) fourier: Option<Linear>,
+    /// With gap features: the embedding of the gaps ahead of a slot's piece, added to its token.
+    pub(super) gaps: Option<Linear>,
     /// With self-conditioning: the embedding of the previous clean estimate of a slot, added to
     /// its token.
     pub(super) estimate: Option<Linear>,
@@ -184,6 +187,10 @@ impl Denoiser {
             fourier: match cfg.fourier_bands {
                 0 => None,
                 _ => Some(p.linear("fourier", fourier::features_per_slot(cfg), d, false)?),
+            },
+            gaps: match cfg.gap_bounds {
+                Some(_) => Some(p.linear("gaps", GAP_FEATURES, d, false)?),
+                None => None,
             },
             estimate: match cfg.self_condition {
                 true => Some(p.linear("estimate", cfg.token_dim(), d, true)?),
@@ -257,7 +264,16 @@ impl Denoiser {
             h = (h + Tensor::cat(&[&embedded, &padding], 1)?)?;
         }
         if let Some(walls) = &self.walls {
-            h = (h + walls.forward(&self.wall_features(x, cond)?)?)?;
+            let features = self.slot_features(x, cond, WALL_FEATURES, |tokens, contacts, mask, floor| {
+                walls::slot_features(&self.cfg, tokens, contacts, mask, floor)
+            })?;
+            h = (h + walls.forward(&features)?)?;
+        }
+        if let (Some(layer), Some(bounds)) = (&self.gaps, &self.cfg.gap_bounds) {
+            let features = self.slot_features(x, cond, GAP_FEATURES, |tokens, contacts, mask, _| {
+                gaps::slot_features(&self.cfg, bounds, tokens, contacts, mask)
+            })?;
+            h = (h + layer.forward(&features)?)?;
         }
         if let Some(layer) = &self.fourier {
             let (b, slots, _) = x.dims3()?;
@@ -302,8 +318,16 @@ impl Denoiser {
 }
 
 impl Denoiser {
-    /// The wall features (B, S, WALL_FEATURES) of the noisy tokens `x`, computed on the host.
-    fn wall_features(&self, x: &Tensor, cond: &CondTensors) -> Result<Tensor, GenError> {
+    /// Features (B, S, `width`) of the noisy tokens `x` computed on the host, item by item, by
+    /// `per_item(tokens, contacts, mask, floor)` (one item's slots, contact boxes, their mask and
+    /// floor-plan points).
+    fn slot_features(
+        &self,
+        x: &Tensor,
+        cond: &CondTensors,
+        width: usize,
+        per_item: impl Fn(&[f32], &[f32], &[f32], &[f32]) -> Vec<f32>,
+    ) -> Result<Tensor, GenError> {
         let cfg = &self.cfg;
         let (b, slots, dim) = x.dims3()?;
         let (k, f) = (cfg.max_contacts, cfg.floor_points * FLOOR_FEATURES);
@@ -311,17 +335,16 @@ impl Denoiser {
         let contacts = cond.contacts.flatten_all()?.to_vec1::<f32>()?;
         let mask = cond.contact_mask.flatten_all()?.to_vec1::<f32>()?;
         let floor = cond.floor.flatten_all()?.to_vec1::<f32>()?;
-        let mut features = Vec::with_capacity(b * slots * WALL_FEATURES);
+        let mut features = Vec::with_capacity(b * slots * width);
         for item in 0..b {
-            features.extend(walls::slot_features(
-                cfg,
+            features.extend(per_item(
                 &values[item * slots * dim..(item + 1) * slots * dim],
                 &contacts[item * k * CONTACT_FEATURES..(item + 1) * k * CONTACT_FEATURES],
                 &mask[item * k..(item + 1) * k],
                 &floor[item * f..(item + 1) * f],
             ));
         }
-        Ok(Tensor::from_vec(features, (b, slots, WALL_FEATURES), x.device())?)
+        Ok(Tensor::from_vec(features, (b, slots, width), x.device())?)
     }
 
     /// The relation bias (B, heads, N, N) of the noisy tokens `x` and the contact boxes (which

@@ -170,6 +170,21 @@ pub trait TrainObserver {
 
 impl TrainObserver for () {}
 
+/// The bounds a model trained on the dataset in `data` encodes its tokens in: its train split's
+/// ([`Bounds::from_stats`]).
+pub fn data_bounds(data: &Path) -> Result<Bounds, GenError> {
+    bounds_of(&read_stats(data)?, data)
+}
+
+fn bounds_of(stats: &DatasetStats, data: &Path) -> Result<Bounds, GenError> {
+    let train_split = stats
+        .splits
+        .get("train")
+        .filter(|s| s.rooms > 0)
+        .ok_or_else(|| GenError::Input { path: data.join("stats.json"), message: "the train split is empty".into() })?;
+    Ok(Bounds::from_stats(train_split))
+}
+
 /// The training rooms `opts` names, encoded for its model (its data's train split, then every
 /// split of each extra dataset, then each joint dataset's train split, each in file-name order),
 /// with the bounds they are encoded in (from the data's train split), the data's stats and the
@@ -186,11 +201,7 @@ pub fn training_rooms(opts: &TrainOptions) -> Result<TrainingRooms, GenError> {
             message: format!("dataset is {} but the model is for {}", stats.room_type, cfg.room_type),
         });
     }
-    let train_split = stats.splits.get("train").filter(|s| s.rooms > 0).ok_or_else(|| GenError::Input {
-        path: opts.data.join("stats.json"),
-        message: "the train split is empty".into(),
-    })?;
-    let bounds = Bounds::from_stats(train_split);
+    let bounds = bounds_of(&stats, &opts.data)?;
     let mut train_set = load_split(&opts.data, "train", &bounds, cfg)?;
     let mut hashed = stats_bytes.clone();
     let more = opts.extra_data.iter().map(|d| (d, &["train", "val", "test"][..]));

@@ -14,7 +14,7 @@ use super::{ChunkInputs, ConditionInputs, GradNet};
 use crate::generator::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES};
 use crate::generator::matmul::LinearAt;
 use crate::generator::model::time_feature_values;
-use crate::generator::{fourier, relations, walls};
+use crate::generator::{fourier, gaps, relations, walls};
 
 /// A PointNet's activations: ReLU outputs of the first two layers, the third's output and, per
 /// item, the max over the points.
@@ -199,6 +199,8 @@ pub(super) struct StepTape {
     pub(super) wall_in: Vec<f32>,
     /// With Fourier features: every object row's ([`fourier::slot_features`]).
     pub(super) fourier_in: Vec<f32>,
+    /// With gap features: every object row's ([`gaps::slot_features`]).
+    pub(super) gap_in: Vec<f32>,
     /// With self-conditioning: the previous clean estimate of every object row (zeros: none).
     pub(super) estimate_in: Vec<f32>,
     /// Per block (items × 6d), then the final layer's (items × 2d).
@@ -248,7 +250,9 @@ impl StepTape {
         net.input.forward(p, noisy, &mut h[..objects * d]);
         let wall_in = match &net.walls {
             Some(walls) => {
-                let features = wall_features(net, cond, noisy);
+                let features = slot_features(net, cond, noisy, |tokens, contacts, mask, floor| {
+                    walls::slot_features(cfg, tokens, contacts, mask, floor)
+                });
                 let embedded = walls.map(p, &features);
                 h[..objects * d].iter_mut().zip(&embedded).for_each(|(v, e)| *v += e);
                 features
@@ -263,6 +267,17 @@ impl StepTape {
                 features
             }
             None => Vec::new(),
+        };
+        let gap_in = match (&net.gaps, &cfg.gap_bounds) {
+            (Some(layer), Some(bounds)) => {
+                let features = slot_features(net, cond, noisy, |tokens, contacts, mask, _| {
+                    gaps::slot_features(cfg, bounds, tokens, contacts, mask)
+                });
+                let embedded = layer.map(p, &features);
+                h[..objects * d].iter_mut().zip(&embedded).for_each(|(v, e)| *v += e);
+                features
+            }
+            _ => Vec::new(),
         };
         let estimate_in = match &net.estimate {
             Some(layer) => {
@@ -325,6 +340,7 @@ impl StepTape {
             relation_bias,
             wall_in,
             fourier_in,
+            gap_in,
             estimate_in,
             modulation,
             blocks,
@@ -336,15 +352,23 @@ impl StepTape {
     }
 }
 
-/// The wall features of a chunk's object rows, item by item.
-fn wall_features(net: &GradNet, cond: &ConditionTape, noisy: &[f32]) -> Vec<f32> {
+/// Features of a chunk's object rows computed on the host, item by item, by
+/// `per_item(tokens, contacts, mask, floor)` (the floor-plan points empty unless the wall features
+/// keep them).
+fn slot_features(
+    net: &GradNet,
+    cond: &ConditionTape,
+    noisy: &[f32],
+    per_item: impl Fn(&[f32], &[f32], &[f32], &[f32]) -> Vec<f32>,
+) -> Vec<f32> {
     let cfg = &net.cfg;
-    let (k, per_item, f) = (cfg.max_contacts, cfg.slots() * cfg.token_dim(), cfg.floor_points * FLOOR_FEATURES);
+    let (k, per_slots) = (cfg.max_contacts, cfg.slots() * cfg.token_dim());
+    // The floor-plan points are kept only where the wall features need them.
+    let f = if cond.floor_in.is_empty() { 0 } else { cfg.floor_points * FLOOR_FEATURES };
     (0..cond.items.len())
         .flat_map(|item| {
-            walls::slot_features(
-                cfg,
-                &noisy[item * per_item..(item + 1) * per_item],
+            per_item(
+                &noisy[item * per_slots..(item + 1) * per_slots],
                 &cond.contacts[item * k * CONTACT_FEATURES..(item + 1) * k * CONTACT_FEATURES],
                 &cond.mask[item * k..(item + 1) * k],
                 &cond.floor_in[item * f..(item + 1) * f],

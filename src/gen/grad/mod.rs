@@ -21,6 +21,7 @@ mod ops;
 use super::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES, RELATION_HIDDEN};
 use super::dataset::NoisyBatch;
 use super::flat::ParamLayout;
+use super::gaps::GAP_FEATURES;
 use super::matmul::LinearAt;
 use super::relations::RELATION_FEATURES;
 use super::walls::WALL_FEATURES;
@@ -52,6 +53,7 @@ pub struct GradNet {
     relation: Option<[LinearAt; 2]>,
     walls: Option<LinearAt>,
     fourier: Option<LinearAt>,
+    gaps: Option<LinearAt>,
     estimate: Option<LinearAt>,
     time: [LinearAt; 2],
     contact: [LinearAt; 2],
@@ -185,6 +187,7 @@ impl GradNet {
                 0 => None,
                 _ => Some(linear("fourier", super::fourier::features_per_slot(cfg), d)?),
             },
+            gaps: if cfg.gap_bounds.is_some() { Some(linear("gaps", GAP_FEATURES, d)?) } else { None },
             estimate: if cfg.self_condition { Some(linear("estimate", cfg.token_dim(), d)?) } else { None },
             time: [linear("time.0", super::config::TIME_FEATURES, d)?, linear("time.1", d, d)?],
             contact: [linear("contact.0", CONTACT_FEATURES, d)?, linear("contact.1", d, d)?],

@@ -87,13 +87,15 @@ fn gradients_equal_candles_at_initialisation() {
 fn gradients_equal_candles_with_anchored_slots_relations_self_conditioning_rooms_and_every_weight_set() {
     // Every parameter random (the zero-initialised modulations and outputs too), so every path —
     // the anchored slots' box embedding, the relation bias, the self-conditioning estimate's
-    // embedding, the Fourier features' and the room token included — carries a gradient.
+    // embedding, the Fourier and gap features' and the room token included — carries a gradient.
+    let checkpoint = shipped_model(RoomType::Living).unwrap();
     let cfg = ModelConfig {
         self_condition: true,
         min_snr: Some(5.0),
         room_token: true,
         count_condition: true,
         fourier_bands: 3,
+        gap_bounds: Some(checkpoint.meta.bounds.clone()),
         ..ModelConfig::tiny(RoomType::Living)
     };
     assert!(cfg.anchor_scale > 0.0);
@@ -102,7 +104,6 @@ fn gradients_equal_candles_with_anchored_slots_relations_self_conditioning_rooms
     let (layout, _) = ParamLayout::of(&init.snapshot().unwrap()).unwrap();
     let mut rng = Rng::new(8);
     let params: Vec<f32> = (0..layout.len()).map(|_| 0.2 * rng.normal() as f32).collect();
-    let checkpoint = shipped_model(RoomType::Living).unwrap();
     let b = batch(&[RoomType::Living, RoomType::Dining], &cfg, &checkpoint.meta.bounds, 7);
     assert!(b.self_condition.contains(&true) && b.self_condition.contains(&false), "{:?}", b.self_condition);
     assert_ne!(b.loss_weights, b.host.weights, "Min-SNR weights");
@@ -120,6 +121,7 @@ fn gradients_equal_candles_with_anchored_slots_relations_self_conditioning_rooms
     assert!(grads.contains_key("anchor.weight") && grads.contains_key("relation.0.weight"));
     assert!(cfg.wall_features && grads.contains_key("walls.weight"));
     assert!(grads.contains_key("estimate.weight") && grads.contains_key("fourier.weight"));
+    assert!(grads.contains_key("gaps.weight"));
     // Living and dining rooms in one batch: both rows of the room table learn, the bedroom's not.
     let (room, _) = layout.find("room").unwrap();
     let net = GradNet::new(&cfg, &layout).unwrap();
