@@ -13,8 +13,10 @@
 //! model alone drew tables into their chairs in two thirds of the val dining rooms
 //! (docs/RESULTS.md, "Gaps between pieces"). Here the gap is handed to it.
 //!
-//! Gaps are in metres over [`UNIT`], clamped to [−[`BEHIND`], [`FAR`]]; empty slots and hanging
-//! pieces read [`FAR`] on every face. Not here: the embedding itself (both engines).
+//! A gap g (m, clamped to [−[`BEHIND`], [`FAR`]]) reads tanh(g / [`SCALE`]): about linear over the
+//! centimetres between a chair and its table, −1 to 1 whatever the room, so that no feature
+//! outweighs the token's own embedding; empty slots and hanging pieces read the far value on every
+//! face. Not here: the embedding itself (both engines).
 
 use super::ModelConfig;
 use super::anchors;
@@ -25,8 +27,8 @@ use glam::DVec2;
 /// Features per object slot: the gaps ahead of its +x, −x, +y and −y faces.
 pub const GAP_FEATURES: usize = 4;
 
-/// The unit of a gap feature (m): a centimetre reads 0.1.
-pub const UNIT: f64 = 0.1;
+/// The gap (m) that reads tanh(1): a 4 cm gap reads 0.197, a centimetre more about 0.05 more.
+pub const SCALE: f64 = 0.2;
 
 /// Gaps beyond this (m) read as this: nothing near that way.
 pub const FAR: f64 = 1.0;
@@ -43,17 +45,22 @@ pub fn slot_features(cfg: &ModelConfig, bounds: &Bounds, tokens: &[f32], contact
         .into_iter()
         .filter(|(_, o)| !o.category.is_hanging())
         .collect();
-    let mut out = vec![(FAR / UNIT) as f32; cfg.slots() * GAP_FEATURES];
+    let mut out = vec![feature(FAR); cfg.slots() * GAP_FEATURES];
     for (i, (slots, piece)) in pieces.iter().enumerate() {
         let others = pieces.iter().enumerate().filter(|&(j, _)| j != i).map(|(_, (_, o))| o);
         let gaps = gaps_ahead(piece, others);
         for &slot in slots {
             for (face, gap) in gaps.iter().enumerate() {
-                out[slot * GAP_FEATURES + face] = (gap / UNIT) as f32;
+                out[slot * GAP_FEATURES + face] = feature(*gap);
             }
         }
     }
     out
+}
+
+/// What a gap `g` (m) reads.
+fn feature(g: f64) -> f32 {
+    (g / SCALE).tanh() as f32
 }
 
 /// The clamped gaps (m) ahead of `piece`'s +x, −x, +y and −y faces to the nearest of `others`.
@@ -167,11 +174,11 @@ mod tests {
         let (bounds, tokens) = tokens_of(&objects, &cfg);
         let f = slot_features(&cfg, &bounds, &tokens, &[], &[]);
         assert_eq!(f.len(), cfg.slots() * GAP_FEATURES);
-        let far = (FAR / UNIT) as f32;
+        let far = feature(FAR);
         let slot = |k: usize| &f[k * GAP_FEATURES..(k + 1) * GAP_FEATURES];
-        // The table's −y face and the chair's +y face: 4 cm, 0.4 units.
-        assert!((slot(0)[3] - 0.4).abs() < 1e-3, "{:?}", slot(0));
-        assert!((slot(1)[2] - 0.4).abs() < 1e-3, "{:?}", slot(1));
+        // The table's −y face and the chair's +y face: 4 cm, tanh(0.2).
+        assert!((slot(0)[3] - 0.2f32.tanh()).abs() < 1e-4, "{:?}", slot(0));
+        assert!((slot(1)[2] - 0.2f32.tanh()).abs() < 1e-4, "{:?}", slot(1));
         assert_eq!(slot(2), [far; 4]);
         assert!((3..cfg.slots()).all(|k| slot(k) == [far; 4]));
     }
