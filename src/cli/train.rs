@@ -118,6 +118,11 @@ pub struct TrainArgs {
     /// its step says, the target unchanged (0: none). The validation loss stays unperturbed.
     #[arg(long, default_value_t = 0.0)]
     pub input_perturbation: f64,
+    /// Share of training scenes with one free piece moved 6 to 50 cm before the noise, the target
+    /// still the scene's own layout, so that the model learns to put pieces back (0: none;
+    /// docs/RESULTS.md, "Displaced pieces"). The validation loss sees none.
+    #[arg(long, default_value_t = 0.0)]
+    pub displaced_pieces: f64,
     /// Gradient engine: fused (the hand-written pass on every core) or candle (autograd, the
     /// slower reference it is tested against).
     #[arg(long, default_value = "fused", value_parser = by_config_name::<Engine>)]
@@ -222,6 +227,11 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
         "--input-perturbation: must be a number between 0 and 1"
     );
     opts.input_perturbation = args.input_perturbation;
+    anyhow::ensure!(
+        args.displaced_pieces.is_finite() && (0.0..=1.0).contains(&args.displaced_pieces),
+        "--displaced-pieces: must be a number between 0 and 1"
+    );
+    opts.displaced_pieces = args.displaced_pieces;
     opts.engine = args.engine;
     opts.log_every = args.log_every;
     opts.val_every = args.val_every;

@@ -185,6 +185,10 @@ impl HostBatch {
     }
 }
 
+/// The farthest [`NoisyBatch::displace_pieces`] moves a piece (token units, the window's half
+/// side being 1: 28 to 52 cm).
+pub const DISPLACE_REACH: f64 = 0.1;
+
 /// A training batch: clean scenes, one diffusion step per scene, the noise the model must predict
 /// and the noisy tokens it sees.
 #[derive(Debug, Clone)]
@@ -269,6 +273,43 @@ impl NoisyBatch {
         }
     }
 
+    /// Displaced pieces: in a `share` of the scenes, drawn from `rng` after everything
+    /// [`draw`](Self::draw) drew, one free slot's piece has its centre moved by 0.02 to
+    /// [`DISPLACE_REACH`] token units in a random direction before the noise is added, and the
+    /// target stays what gives the scene's own clean tokens back (for ε and v models the target
+    /// changes with the input; for x₀ it is the clean tokens as before). The denoiser so learns to
+    /// put a piece back where the rest of the room says it goes — from a place no real room has,
+    /// as a sampling chain reaches (a chair inside its table) — at every noise level, the least
+    /// included, where it otherwise copies its input.
+    pub fn displace_pieces(&mut self, share: f64, schedule: &Schedule, cfg: &ModelConfig, rng: &mut Rng) {
+        let (dim, slots, k) = (cfg.token_dim(), cfg.slots(), cfg.max_contacts);
+        let empty = cfg.classes() - 1;
+        for item in 0..self.host.size {
+            if rng.uniform(0.0, 1.0) >= share {
+                continue;
+            }
+            let boxes = self.host.contact_mask[item * k..(item + 1) * k].iter().filter(|&&m| m != 0.0).count();
+            let tokens = &self.host.tokens[item * slots * dim..(item + 1) * slots * dim];
+            let free: Vec<usize> = (cfg.anchored_slots(boxes)..slots)
+                .filter(|&s| super::tokens::slot_class(&tokens[s * dim..(s + 1) * dim], cfg) != empty)
+                .collect();
+            let (angle, reach) = (rng.uniform(0.0, std::f64::consts::TAU), rng.uniform(0.02, DISPLACE_REACH));
+            let Some(&slot) = free.get(rng.index(free.len().max(1))) else { continue };
+            let ab = schedule.alpha_bars[self.t[item]];
+            let sigma = (1.0 - ab).sqrt().max(1e-6);
+            for (axis, shift) in [angle.cos() * reach, angle.sin() * reach].into_iter().enumerate() {
+                let at = (item * slots + slot) * dim + axis;
+                self.noisy[at] += (ab.sqrt() * shift) as f32;
+                // The target whose clean estimate from the moved input is the scene's own.
+                self.target[at] += match cfg.prediction {
+                    Prediction::Epsilon => ab.sqrt() * shift / sigma,
+                    Prediction::X0 => 0.0,
+                    Prediction::V => ab * shift / sigma,
+                } as f32;
+            }
+        }
+    }
+
     /// The loss's denominator: the sum of the host's loss weights (before any Min-SNR weight), at
     /// least 1.
     pub fn weight_total(&self) -> f32 {
@@ -308,6 +349,48 @@ mod tests {
         let mean = z.iter().sum::<f64>() / z.len() as f64;
         let sd = (z.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / z.len() as f64).sqrt();
         assert!(z.len() > 1000 && mean.abs() < 0.05 && (sd - 0.5).abs() < 0.05, "{mean} {sd} over {}", z.len());
+    }
+
+    #[test]
+    fn a_displaced_piece_moves_in_the_input_only_and_the_target_still_gives_the_scene_back() {
+        for prediction in [Prediction::V, Prediction::Epsilon, Prediction::X0] {
+            let cfg = ModelConfig { prediction, ..ModelConfig::tiny(RoomType::Bedroom) };
+            let scenes: Vec<Scene> = (0..8).map(|i| generate_room(RoomType::Bedroom, 3, i, false).scene).collect();
+            let mut stats = SplitStats::default();
+            scenes.iter().for_each(|s| stats.add(s));
+            let bounds = Bounds::from_stats(&stats);
+            let mut host = HostBatch::default();
+            scenes.iter().for_each(|s| host.push(&Example::of(s, &bounds, &cfg), &cfg));
+            let schedule = Schedule::of(&cfg);
+            let plain = NoisyBatch::draw(host.clone(), &schedule, &mut Rng::new(4), &cfg);
+            let mut rng = Rng::new(4);
+            let mut moved = NoisyBatch::draw(host, &schedule, &mut rng, &cfg);
+            moved.displace_pieces(1.0, &schedule, &cfg, &mut rng);
+            let (dim, per_item) = (cfg.token_dim(), cfg.slots() * cfg.token_dim());
+            let changed: Vec<usize> = (0..moved.noisy.len()).filter(|&k| moved.noisy[k] != plain.noisy[k]).collect();
+            // Every scene has a free piece: one slot's centre x and y move in each, nothing else.
+            assert_eq!(changed.len(), 2 * moved.t.len(), "{changed:?}");
+            for pair in changed.chunks(2) {
+                assert_eq!((pair[0] % dim, pair[1]), (0, pair[0] + 1));
+                let item = pair[0] / per_item;
+                let ab = schedule.alpha_bars[moved.t[item]];
+                let shift = |k: usize| f64::from(moved.noisy[k] - plain.noisy[k]) / ab.sqrt();
+                let reach = shift(pair[0]).hypot(shift(pair[1]));
+                assert!((0.02 - 1e-4..=DISPLACE_REACH + 1e-4).contains(&reach), "{reach}");
+                // The clean estimate from the moved input and the new target is the scene's own.
+                for &k in pair {
+                    let x0 = prediction.clean_estimate(moved.target[k], moved.noisy[k], ab);
+                    assert!(
+                        (x0 - moved.host.tokens[k]).abs() < 1e-3,
+                        "{prediction:?} t {}: {x0} vs {}",
+                        moved.t[item],
+                        moved.host.tokens[k]
+                    );
+                }
+            }
+            let unchanged = (0..moved.target.len()).filter(|k| !changed.contains(k));
+            assert!(unchanged.into_iter().all(|k| moved.target[k] == plain.target[k]));
+        }
     }
 
     #[test]

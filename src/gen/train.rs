@@ -73,6 +73,9 @@ pub struct TrainOptions {
     /// Input perturbation γ ([`NoisyBatch::perturb_input`]; 0, the default, none): each training
     /// input gets √(1 − ᾱ_t) γ ξ more noise than its step says. Validation inputs get none.
     pub input_perturbation: f64,
+    /// Share of training scenes with one piece displaced ([`NoisyBatch::displace_pieces`]; 0, the
+    /// default, none). Validation scenes get none.
+    pub displaced_pieces: f64,
     /// Where gradients come from.
     pub engine: Engine,
 }
@@ -100,6 +103,7 @@ impl TrainOptions {
             command: String::new(),
             category_balance: 0.0,
             input_perturbation: 0.0,
+            displaced_pieces: 0.0,
             engine: Engine::Fused,
         }
     }
@@ -314,6 +318,9 @@ pub fn train(
         let mut batch = NoisyBatch::draw(host, &schedule, &mut rng, cfg);
         if opts.input_perturbation > 0.0 {
             batch.perturb_input(opts.input_perturbation, &schedule, &mut rng);
+        }
+        if opts.displaced_pieces > 0.0 {
+            batch.displace_pieces(opts.displaced_pieces, &schedule, cfg, &mut rng);
         }
         let lr = opts.lr_at(step);
         let (loss, grads) = engine.loss_and_grad(&params, &batch)?;
