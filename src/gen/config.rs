@@ -355,6 +355,9 @@ impl ModelConfig {
         if self.fourier_bands > super::fourier::MAX_BANDS {
             return Some(format!("fourier_bands {} is over {}", self.fourier_bands, super::fourier::MAX_BANDS));
         }
+        if self.gap_bounds.as_ref().is_some_and(|b| !b.is_valid()) {
+            return Some("gap_bounds are not finite and ordered".into());
+        }
         if self.self_condition && self.prediction != Prediction::X0 {
             return Some("self_condition needs prediction x0".into());
         }
@@ -430,6 +433,22 @@ mod tests {
         assert!(above.problem().unwrap().contains("min_snr_floor"));
         let good = ModelConfig { min_snr: Some(5.0), min_snr_floor: Some(1.0), ..tiny };
         assert_eq!(good.problem(), None);
+    }
+
+    #[test]
+    fn gap_bounds_must_be_finite_and_ordered() {
+        let ok = Bounds {
+            center_min: [-3.0, -3.0, 0.0],
+            center_max: [3.0, 3.0, 3.0],
+            size_min: [0.0; 3],
+            size_max: [3.0; 3],
+        };
+        let tiny = ModelConfig::tiny(RoomType::Dining);
+        assert_eq!(ModelConfig { gap_bounds: Some(ok.clone()), ..tiny.clone() }.problem(), None);
+        let nan = Bounds { size_max: [f64::NAN, 3.0, 3.0], ..ok.clone() };
+        assert!(ModelConfig { gap_bounds: Some(nan), ..tiny.clone() }.problem().unwrap().contains("gap_bounds"));
+        let reversed = Bounds { center_min: [4.0, -3.0, 0.0], ..ok };
+        assert!(ModelConfig { gap_bounds: Some(reversed), ..tiny }.problem().unwrap().contains("gap_bounds"));
     }
 
     #[test]
