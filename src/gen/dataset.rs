@@ -323,15 +323,21 @@ mod tests {
     use crate::data::{SplitStats, generate_room};
     use crate::scene::{Category, Object, RoomType};
 
-    #[test]
-    fn input_perturbation_moves_the_noisy_tokens_by_gamma_times_the_noise_and_nothing_else() {
-        let cfg = ModelConfig::tiny(RoomType::Bedroom);
+    /// Eight procedural bedrooms as a training batch for `cfg`, in their own bounds.
+    fn eight_bedrooms(cfg: &ModelConfig) -> HostBatch {
         let scenes: Vec<Scene> = (0..8).map(|i| generate_room(RoomType::Bedroom, 3, i, false).scene).collect();
         let mut stats = SplitStats::default();
         scenes.iter().for_each(|s| stats.add(s));
         let bounds = Bounds::from_stats(&stats);
         let mut host = HostBatch::default();
-        scenes.iter().for_each(|s| host.push(&Example::of(s, &bounds, &cfg), &cfg));
+        scenes.iter().for_each(|s| host.push(&Example::of(s, &bounds, cfg), cfg));
+        host
+    }
+
+    #[test]
+    fn input_perturbation_moves_the_noisy_tokens_by_gamma_times_the_noise_and_nothing_else() {
+        let cfg = ModelConfig::tiny(RoomType::Bedroom);
+        let host = eight_bedrooms(&cfg);
         let schedule = Schedule::linear(cfg.diffusion_steps);
         let plain = NoisyBatch::draw(host.clone(), &schedule, &mut Rng::new(4), &cfg);
         let mut rng = Rng::new(4);
@@ -355,12 +361,7 @@ mod tests {
     fn a_displaced_piece_moves_in_the_input_only_and_the_target_still_gives_the_scene_back() {
         for prediction in [Prediction::V, Prediction::Epsilon, Prediction::X0] {
             let cfg = ModelConfig { prediction, ..ModelConfig::tiny(RoomType::Bedroom) };
-            let scenes: Vec<Scene> = (0..8).map(|i| generate_room(RoomType::Bedroom, 3, i, false).scene).collect();
-            let mut stats = SplitStats::default();
-            scenes.iter().for_each(|s| stats.add(s));
-            let bounds = Bounds::from_stats(&stats);
-            let mut host = HostBatch::default();
-            scenes.iter().for_each(|s| host.push(&Example::of(s, &bounds, &cfg), &cfg));
+            let host = eight_bedrooms(&cfg);
             let schedule = Schedule::of(&cfg);
             let plain = NoisyBatch::draw(host.clone(), &schedule, &mut Rng::new(4), &cfg);
             let mut rng = Rng::new(4);
