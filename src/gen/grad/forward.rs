@@ -248,46 +248,35 @@ impl StepTape {
 
         let mut h = vec![0f32; row_item.len() * d];
         net.input.forward(p, noisy, &mut h[..objects * d]);
-        let wall_in = match &net.walls {
-            Some(walls) => {
-                let features = slot_features(net, cond, noisy, |tokens, contacts, mask, floor| {
-                    walls::slot_features(cfg, tokens, contacts, mask, floor)
-                });
-                let embedded = walls.map(p, &features);
-                h[..objects * d].iter_mut().zip(&embedded).for_each(|(v, e)| *v += e);
-                features
-            }
-            None => Vec::new(),
-        };
-        let fourier_in = match &net.fourier {
+        // Each optional per-slot embedding: its layer over features of the noisy tokens, added to
+        // the object rows; the features are kept for the backward pass (empty where it is off).
+        let mut embed = |layer: Option<&LinearAt>, features: &dyn Fn() -> Vec<f32>| match layer {
             Some(layer) => {
-                let features = fourier::slot_features(cfg, noisy);
+                let features = features();
                 let embedded = layer.map(p, &features);
                 h[..objects * d].iter_mut().zip(&embedded).for_each(|(v, e)| *v += e);
                 features
             }
             None => Vec::new(),
         };
-        let gap_in = match (&net.gaps, &cfg.gap_bounds) {
-            (Some(layer), Some(bounds)) => {
-                let features = slot_features(net, cond, noisy, |tokens, contacts, mask, _| {
+        let wall_in = embed(net.walls.as_ref(), &|| {
+            slot_features(net, cond, noisy, |tokens, contacts, mask, floor| {
+                walls::slot_features(cfg, tokens, contacts, mask, floor)
+            })
+        });
+        let fourier_in = embed(net.fourier.as_ref(), &|| fourier::slot_features(cfg, noisy));
+        let gap_in = match &cfg.gap_bounds {
+            Some(bounds) => embed(net.gaps.as_ref(), &|| {
+                slot_features(net, cond, noisy, |tokens, contacts, mask, _| {
                     gaps::slot_features(cfg, bounds, tokens, contacts, mask)
-                });
-                let embedded = layer.map(p, &features);
-                h[..objects * d].iter_mut().zip(&embedded).for_each(|(v, e)| *v += e);
-                features
-            }
-            _ => Vec::new(),
-        };
-        let estimate_in = match &net.estimate {
-            Some(layer) => {
-                let values = if estimate.is_empty() { vec![0f32; noisy.len()] } else { estimate.to_vec() };
-                let embedded = layer.map(p, &values);
-                h[..objects * d].iter_mut().zip(&embedded).for_each(|(v, e)| *v += e);
-                values
-            }
+                })
+            }),
             None => Vec::new(),
         };
+        let estimate_in = embed(net.estimate.as_ref(), &|| match estimate.is_empty() {
+            true => vec![0f32; noisy.len()],
+            false => estimate.to_vec(),
+        });
         for (&r, e) in cond.contact_row.iter().zip(cond.anchored.chunks_exact(d)) {
             h[r * d..(r + 1) * d].iter_mut().zip(e).for_each(|(v, e)| *v += e);
         }
