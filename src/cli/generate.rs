@@ -65,6 +65,15 @@ pub struct GenerateArgs {
     /// it has; the input's pieces are replaced as always).
     #[arg(long)]
     pub input_counts: bool,
+    /// Refine each input's own pieces instead of sampling from pure noise (SDEdit): its layout
+    /// is noised to the linear schedule's step STRENGTH × T (0 to 1) and denoised, guided, from
+    /// there. Small values move pieces by centimetres and keep the make-up; 1 forgets the input.
+    #[arg(long, value_name = "STRENGTH")]
+    pub refine: Option<f64>,
+    /// A low-noise expert's model folder (`train --expert-below N`): it takes the chain's steps
+    /// below N, the model (shipped or --model) the rest.
+    #[arg(long)]
+    pub expert: Option<PathBuf>,
 }
 
 /// Repair flags (shared with `demo`).
@@ -151,6 +160,10 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
     anyhow::ensure!(args.samples > 0, "--samples: must be at least 1");
     anyhow::ensure!(args.sampling_steps.is_none_or(|n| n >= 2), "--sampling-steps: must be at least 2");
     anyhow::ensure!((0.0..=2.0).contains(&args.eta), "--eta: must be between 0 and 2, not {}", args.eta);
+    anyhow::ensure!(
+        args.refine.is_none_or(|r| r > 0.0 && r <= 1.0),
+        "--refine: must be a number above 0 and at most 1"
+    );
     let files = if args.input.is_dir() { super::eval::scene_files(&args.input)? } else { vec![args.input.clone()] };
     let inputs: Vec<Scene> = files.iter().map(Scene::load).collect::<Result<_, _>>()?;
     let opts = LayoutOptions {
@@ -166,6 +179,7 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
     // each, which must generate them all).
     let groups = room_groups(&inputs);
     let custom = args.model.as_deref().map(Checkpoint::load).transpose()?;
+    let expert = args.expert.as_deref().map(|dir| Checkpoint::load(dir).map(|c| (dir, c))).transpose()?;
     let generators: Vec<Generator> = groups
         .iter()
         .map(|(room, members)| -> anyhow::Result<_> {
@@ -178,19 +192,29 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
             );
             let generator = if args.input_counts { generator.with_input_counts() } else { generator };
             let generator = generator.with_eta(args.eta);
-            Ok(match args.sampling_steps {
+            let generator = match args.sampling_steps {
                 Some(n) => generator.with_sampling_steps(n),
+                None => generator,
+            };
+            let generator = match args.refine {
+                Some(strength) => generator.refining(strength),
+                None => generator,
+            };
+            Ok(match &expert {
+                Some((dir, e)) => generator.with_expert(e.clone(), dir)?,
                 None => generator,
             })
         })
         .collect::<anyhow::Result<_>>()?;
-    // Counting an input's pieces needs pieces: an empty room would be asked to hold nothing.
-    if args.input_counts {
+    // Counting or refining an input's pieces needs pieces: an empty room would be asked to hold
+    // nothing.
+    let uses_pieces = [(args.input_counts, "--input-counts", "count"), (args.refine.is_some(), "--refine", "refine")];
+    for (_, flag, verb) in uses_pieces.into_iter().filter(|(on, _, _)| *on) {
         for (file, input) in files.iter().zip(&inputs) {
             let pieces: usize = input.room_type.category_counts(&input.objects).iter().sum();
             anyhow::ensure!(
                 pieces > 0,
-                "{}: --input-counts: the input has no {} pieces to count (list the room's pieces in its objects)",
+                "{}: {flag}: the input has no {} pieces to {verb} (list the room's pieces in its objects)",
                 file.display(),
                 input.room_type
             );

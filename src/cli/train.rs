@@ -95,6 +95,10 @@ pub struct TrainArgs {
     /// floor, γ), so the noisiest steps still count (needs --min-snr; default: none).
     #[arg(long)]
     pub min_snr_floor: Option<f64>,
+    /// Train a low-noise expert: the steps below this one of the schedule alone, for `generate
+    /// --expert` to hand it those steps (default: every step).
+    #[arg(long)]
+    pub expert_below: Option<usize>,
     /// Seed of initialisation, batches and noise.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
@@ -196,6 +200,9 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     }
     if args.min_snr_floor.is_some() {
         model.min_snr_floor = args.min_snr_floor;
+    }
+    if args.expert_below.is_some() {
+        model.expert_below = args.expert_below;
     }
     model.room_token |= args.room_token;
     model.count_condition |= args.count_condition;

@@ -113,6 +113,11 @@ pub struct ModelConfig {
     /// configs: the model chooses the counts itself.
     #[serde(default)]
     pub count_condition: bool,
+    /// A low-noise expert (the refiners of eDiff-I and SDXL): `Some(n)` trains the model on the
+    /// steps t < n of its schedule alone, for sampling to hand it those steps beside a model of
+    /// the whole chain ([`super::Generator::with_expert`]). None (older configs): every step.
+    #[serde(default)]
+    pub expert_below: Option<usize>,
 }
 
 /// Which noise levels the T steps visit.
@@ -224,6 +229,7 @@ impl ModelConfig {
             min_snr_floor: None,
             room_token: false,
             count_condition: false,
+            expert_below: None,
         }
     }
 
@@ -270,6 +276,7 @@ impl ModelConfig {
             min_snr_floor: None,
             room_token: false,
             count_condition: false,
+            expert_below: None,
         }
     }
 
@@ -371,6 +378,11 @@ impl ModelConfig {
         {
             return Some(format!("min_snr_floor {floor} is not a number in [0, min_snr]"));
         }
+        if let Some(n) = self.expert_below
+            && !(1..=self.diffusion_steps).contains(&n)
+        {
+            return Some(format!("expert_below {n} is outside 1 to diffusion_steps {}", self.diffusion_steps));
+        }
         if !(2..=Self::MAX_DIFFUSION_STEPS).contains(&self.diffusion_steps) {
             return Some(format!(
                 "diffusion_steps {} is outside 2 to {}",
@@ -431,6 +443,11 @@ mod tests {
         assert!(no_gamma.problem().unwrap().contains("min_snr_floor"));
         let above = ModelConfig { min_snr: Some(5.0), min_snr_floor: Some(6.0), ..tiny.clone() };
         assert!(above.problem().unwrap().contains("min_snr_floor"));
+        // A low-noise expert takes at least one step and at most all.
+        for (below, bad) in [(0, true), (1, false), (200, false), (201, true)] {
+            let expert = ModelConfig { expert_below: Some(below), ..tiny.clone() };
+            assert_eq!(expert.problem().is_some_and(|p| p.contains("expert_below")), bad, "{below}");
+        }
         let good = ModelConfig { min_snr: Some(5.0), min_snr_floor: Some(1.0), ..tiny };
         assert_eq!(good.problem(), None);
     }

@@ -216,7 +216,8 @@ impl NoisyBatch {
     /// self-conditioned, from `rng` (in that order: runs and resumes depend on it).
     pub fn draw(host: HostBatch, schedule: &Schedule, rng: &mut Rng, cfg: &ModelConfig) -> NoisyBatch {
         let per_item = cfg.slots() * cfg.token_dim();
-        let t: Vec<usize> = (0..host.size).map(|_| rng.index(schedule.steps())).collect();
+        let steps = cfg.expert_below.map_or(schedule.steps(), |n| n.min(schedule.steps()));
+        let t: Vec<usize> = (0..host.size).map(|_| rng.index(steps)).collect();
         let noise: Vec<f32> = (0..host.size * per_item).map(|_| rng.normal() as f32).collect();
         let noisy = host
             .tokens
@@ -332,6 +333,22 @@ mod tests {
         let mut host = HostBatch::default();
         scenes.iter().for_each(|s| host.push(&Example::of(s, &bounds, cfg), cfg));
         host
+    }
+
+    #[test]
+    fn a_low_noise_expert_draws_only_its_steps() {
+        let cfg = ModelConfig::tiny(RoomType::Bedroom);
+        let schedule = Schedule::linear(cfg.diffusion_steps);
+        let expert = ModelConfig { expert_below: Some(3), ..cfg.clone() };
+        let (mut all, mut low) = (Vec::new(), Vec::new());
+        for seed in 0..20 {
+            all.extend(NoisyBatch::draw(eight_bedrooms(&cfg), &schedule, &mut Rng::new(seed), &cfg).t);
+            low.extend(NoisyBatch::draw(eight_bedrooms(&expert), &schedule, &mut Rng::new(seed), &expert).t);
+        }
+        // 160 draws: every one of steps 0, 1, 2 and nothing above for the expert; the whole model
+        // draws from all 200.
+        assert_eq!((low.iter().max(), (0..3).all(|t| low.contains(&t))), (Some(&2), true));
+        assert!(all.iter().any(|&t| t > 100));
     }
 
     #[test]

@@ -4,7 +4,7 @@
 use super::count_prior::contact_kinds;
 use super::count_projection::{CountRule, CountTargets};
 use super::dataset::HostBatch;
-use super::sampler::{Chain, Guidance, Projection, empty_projection_steps, sample};
+use super::sampler::{Chain, Denoisers, Guidance, Projection, empty_projection_steps, sample_from};
 use super::{Checkpoint, Features, GenError, Schedule, tokens};
 use crate::data::Rng;
 use crate::human::Conditions;
@@ -30,6 +30,10 @@ pub struct Generator {
     empty_projection: bool,
     input_counts: bool,
     seen_counts: bool,
+    /// Whether the chain starts from each input's own pieces ([`Generator::refining`]).
+    from_input: bool,
+    /// A low-noise expert for the chain's last steps ([`Generator::with_expert`]).
+    expert: Option<Box<Checkpoint>>,
 }
 
 impl Generator {
@@ -37,7 +41,62 @@ impl Generator {
     pub fn new(checkpoint: Checkpoint) -> Generator {
         let schedule = Schedule::of(&checkpoint.meta.model);
         let chain = Chain::full(&schedule);
-        Generator { checkpoint, schedule, chain, empty_projection: true, input_counts: false, seen_counts: true }
+        Generator {
+            checkpoint,
+            schedule,
+            chain,
+            empty_projection: true,
+            input_counts: false,
+            seen_counts: true,
+            from_input: false,
+            expert: None,
+        }
+    }
+
+    /// The same generator handing the steps below `expert`'s
+    /// [`expert_below`](super::ModelConfig::expert_below) to that low-noise expert. The expert
+    /// must be this model's kind: the same conditioning, tokens, bounds and schedule (only its
+    /// architecture, prediction and loss weighting may differ); `path`, its folder, names it in
+    /// the error.
+    pub fn with_expert(self, expert: Checkpoint, path: &std::path::Path) -> Result<Generator, GenError> {
+        let (main, theirs) = (&self.checkpoint.meta, &expert.meta);
+        let fail = |message: String| Err(GenError::Checkpoint { path: path.to_path_buf(), message });
+        let Some(below) = theirs.model.expert_below else {
+            return fail("the expert model was not trained as a low-noise expert (train --expert-below)".into());
+        };
+        let (a, b) = (&main.model, &theirs.model);
+        let same_kind = a.room_type == b.room_type
+            && a.room_token == b.room_token
+            && a.count_condition == b.count_condition
+            && a.diffusion_steps == b.diffusion_steps
+            && a.schedule == b.schedule
+            && a.anchor_scale == b.anchor_scale
+            && a.anchored_yaw == b.anchored_yaw
+            && a.max_contacts == b.max_contacts
+            && a.contact_tokens == b.contact_tokens
+            && a.floor_points == b.floor_points
+            && a.free_points == b.free_points
+            && main.bounds == theirs.bounds;
+        if !same_kind {
+            return fail(format!(
+                "the expert (steps below {below}) does not fit the {} model: its room, conditioning, schedule or bounds differ",
+                a.room_names()
+            ));
+        }
+        Ok(Generator { expert: Some(Box::new(expert)), ..self })
+    }
+
+    /// The same generator refining each input's own pieces instead of sampling from pure noise
+    /// (SDEdit): the input's layout is noised to the noise level of the linear schedule's step
+    /// `strength` × T (0 < strength ≤ 1; 1 forgets the input, small values keep its make-up and
+    /// move its pieces by about that noise) and the chain runs down from there, guided as
+    /// usual. An input without pieces starts from an empty room.
+    pub fn refining(self, strength: f64) -> Generator {
+        let steps = self.schedule.steps();
+        let top =
+            self.schedule.at_linear_noise(((strength.clamp(0.0, 1.0) * steps as f64).round() as usize).min(steps - 1));
+        let visited = self.chain.visited.iter().copied().filter(|&t| t <= top).collect();
+        Generator { chain: Chain { visited, ..self.chain }, from_input: true, ..self }
     }
 
     /// The same generator sampling with `n` model calls instead of T: the chain respaced to `n`
@@ -149,6 +208,7 @@ impl Generator {
         let mut done = 0;
         for chunk in jobs.chunks(MAX_BATCH) {
             let mut batch = HostBatch::default();
+            let mut start = Vec::new();
             let mut seeds = Vec::with_capacity(chunk.len());
             let mut rules = Vec::with_capacity(chunk.len());
             for &(i, k) in chunk {
@@ -167,6 +227,11 @@ impl Generator {
                     }
                 }
                 seeds.push(item_seed);
+                if self.from_input {
+                    let (input, cond) = (&inputs[i], &features[i].0);
+                    let boxes: Vec<_> = cond.contact_boxes.iter().map(|b| b.obox).collect();
+                    start.extend(tokens::encode(input, cond.window.center, &boxes, &meta.bounds, model).0);
+                }
             }
             // The projection also keeps the slots to the counts asked for, or to counts the data has.
             let per_item: Option<Vec<CountRule>> = rules.into_iter().collect();
@@ -180,14 +245,17 @@ impl Generator {
             let scenes: Vec<&Scene> = chunk.iter().map(|&(i, _)| &inputs[i]).collect();
             let mut guide = guidance(&scenes);
             let cond = batch.cond(&meta.model)?;
-            let tokens = sample(
-                &self.checkpoint.denoiser,
+            let denoisers =
+                Denoisers { main: &self.checkpoint.denoiser, expert: self.expert.as_ref().map(|e| &e.denoiser) };
+            let tokens = sample_from(
+                denoisers,
                 &self.schedule,
                 &self.chain,
                 &cond,
                 &seeds,
                 &projection,
                 guide.as_mut().map(|g| g.as_mut() as &mut dyn Guidance),
+                self.from_input.then_some(&start[..]),
             )?;
             let per_item = meta.model.slots() * meta.model.token_dim();
             for (item, (&(i, _), t)) in chunk.iter().zip(tokens.chunks_exact(per_item)).enumerate() {

@@ -71,9 +71,44 @@ pub fn sample(
     cond: &CondTensors,
     seeds: &[u64],
     projection: &Projection,
-    mut guidance: Option<&mut dyn Guidance>,
+    guidance: Option<&mut dyn Guidance>,
 ) -> Result<Vec<f32>, GenError> {
-    let cfg = model.config();
+    sample_from(Denoisers::one(model), schedule, chain, cond, seeds, projection, guidance, None)
+}
+
+/// The denoisers a chain calls: one for every step, and optionally a low-noise expert
+/// ([`ModelConfig::expert_below`](super::ModelConfig::expert_below)) that takes the steps below its
+/// own bound instead.
+#[derive(Debug, Clone, Copy)]
+pub struct Denoisers<'a> {
+    /// The model of the whole chain.
+    pub main: &'a Denoiser,
+    /// The low-noise expert, if any.
+    pub expert: Option<&'a Denoiser>,
+}
+
+impl<'a> Denoisers<'a> {
+    /// `main` alone.
+    pub fn one(main: &'a Denoiser) -> Denoisers<'a> {
+        Denoisers { main, expert: None }
+    }
+}
+
+/// [`sample`] from given layouts instead of pure noise (SDEdit, Meng et al. 2022): `start` holds
+/// world tokens (B × slots × token_dim), noised to the chain's highest visited step with each
+/// item's own seeded draw before the chain runs from there. `None` is [`sample`].
+#[allow(clippy::too_many_arguments)]
+pub fn sample_from(
+    denoisers: Denoisers,
+    schedule: &Schedule,
+    chain: &Chain,
+    cond: &CondTensors,
+    seeds: &[u64],
+    projection: &Projection,
+    mut guidance: Option<&mut dyn Guidance>,
+    start: Option<&[f32]>,
+) -> Result<Vec<f32>, GenError> {
+    let cfg = denoisers.main.config();
     let b = seeds.len();
     let per_item = cfg.slots() * cfg.token_dim();
     let shape = (b, cfg.slots(), cfg.token_dim());
@@ -97,16 +132,39 @@ pub fn sample(
         }
         Ok(Tensor::from_vec(v, shape, &Device::Cpu)?)
     };
-    let fast = FastDenoiser::of(model)?;
+    let fast = FastDenoiser::of(denoisers.main)?;
     let mut prepared = fast.prepare(cond)?;
-    let mut x = gaussian(&mut rngs)?;
+    let mut expert = match denoisers.expert {
+        Some(e) => {
+            let fast = FastDenoiser::of(e)?;
+            let prepared = fast.prepare(cond)?;
+            Some((fast, prepared, e.config().expert_below.unwrap_or(0)))
+        }
+        None => None,
+    };
     let visited = &chain.visited;
+    let mut x = gaussian(&mut rngs)?;
+    if let (Some(start), Some(&top)) = (start, visited.last()) {
+        if start.len() != b * per_item {
+            return Err(GenError::Input {
+                path: Default::default(),
+                message: format!("{} start values for {b} items of {per_item}", start.len()),
+            });
+        }
+        let clean = frame(&Tensor::from_vec(start.to_vec(), shape, &Device::Cpu)?, true)?;
+        let ab = schedule.alpha_bars[top];
+        x = ((clean * ab.sqrt())? + (x * (1.0 - ab).sqrt())?)?;
+    }
     for (i, &t) in visited.iter().enumerate().rev() {
         let noisy: Vec<f32> = x.flatten_all()?.to_vec1()?;
-        let out = fast.forward(&mut prepared, &noisy, t);
-        let ab = schedule.alpha_bars[t];
+        let (model, batch) = match expert.as_mut() {
+            Some((fast, prepared, below)) if t < *below => (&*fast, prepared),
+            _ => (&fast, &mut prepared),
+        };
+        let out = model.forward(batch, &noisy, t);
+        let (ab, prediction) = (schedule.alpha_bars[t], model.config().prediction);
         let x0: Vec<f32> =
-            out.iter().zip(&noisy).map(|(&o, &x)| cfg.prediction.clean_estimate(o, x, ab).clamp(-1.0, 1.0)).collect();
+            out.iter().zip(&noisy).map(|(&o, &x)| prediction.clean_estimate(o, x, ab).clamp(-1.0, 1.0)).collect();
         let x0 = Tensor::from_vec(x0, shape, &Device::Cpu)?;
         let x0 = if t < projection.steps {
             let x0 = match &projection.counts {

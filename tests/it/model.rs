@@ -722,3 +722,89 @@ fn ddim_eta_one_is_the_ddpm_chain_and_eta_zero_is_deterministic() {
         assert!(stderr(&o).starts_with("error: --eta: must be between 0 and 2"), "{}", stderr(&o));
     }
 }
+
+#[test]
+fn refining_at_the_least_noise_keeps_the_input_and_needs_its_pieces() {
+    let input = Scene::load(root().join("scenes/reference/bedroom_rect.json")).unwrap();
+    let shipped = Generator::new(shade_sim::generator::shipped_model(RoomType::Bedroom).unwrap());
+    // The chain respaced to its first and last step, refined from the noise of the linear
+    // schedule's step 0: one model call at σ 0.8 cm, whose estimate is within centimetres of
+    // the input (docs/RESULTS.md, "Where the error enters"). The same make-up, each piece near
+    // its own; sampled from pure noise instead, the layout is another.
+    let near = |g: &Generator| -> f64 {
+        let out = g.generate(std::slice::from_ref(&input), 1, 5).unwrap().remove(0).remove(0);
+        let mut cats: Vec<_> = out.objects.iter().map(|o| o.category).collect();
+        let mut want: Vec<_> = input.objects.iter().map(|o| o.category).collect();
+        cats.sort();
+        want.sort();
+        if cats != want {
+            return f64::INFINITY;
+        }
+        let dist = |o: &shade_sim::scene::Object| {
+            let same = input.objects.iter().filter(|p| p.category == o.category);
+            same.map(|p| (p.center[0] - o.center[0]).hypot(p.center[1] - o.center[1])).fold(f64::INFINITY, f64::min)
+        };
+        out.objects.iter().map(dist).fold(0.0, f64::max)
+    };
+    let one_step = shipped.clone().with_sampling_steps(2).refining(0.001);
+    assert!(near(&one_step) < 0.05, "{}", near(&one_step));
+    assert!(near(&shipped.clone().with_sampling_steps(2)) > 0.2);
+    // Deterministic for a seed.
+    let twice = |g: &Generator| g.generate(std::slice::from_ref(&input), 2, 3).unwrap();
+    let refined = shipped.refining(0.1);
+    assert_eq!(twice(&refined), twice(&refined));
+    // An input without pieces, or a strength outside (0, 1], is refused with one line.
+    let empty = root().join("scenes/examples/bedroom_rect.json");
+    let dir = tempfile::tempdir().unwrap();
+    for (file, strength, said) in [
+        (&empty, "0.1", "--refine: the input has no bedroom pieces to refine"),
+        (&root().join("scenes/reference/bedroom_rect.json"), "0", "error: --refine: must be a number above 0"),
+        (&root().join("scenes/reference/bedroom_rect.json"), "NaN", "error: --refine: must be a number above 0"),
+    ] {
+        let refine = format!("--refine={strength}");
+        let args = ["generate", "--input", file.to_str().unwrap(), "--out", dir.path().to_str().unwrap(), &refine];
+        let o = shade_sim(&args);
+        assert_eq!(o.status.code(), Some(2), "{strength}");
+        assert!(stderr(&o).contains(said) && stderr(&o).lines().count() == 1, "{}", stderr(&o));
+    }
+}
+
+#[test]
+fn a_low_noise_expert_takes_the_last_steps_and_must_fit_its_model() {
+    let input = Scene::load(root().join("scenes/examples/bedroom_rect.json")).unwrap();
+    let shipped = Generator::new(shade_sim::generator::shipped_model(RoomType::Bedroom).unwrap());
+    let layouts = |g: &Generator| g.generate(std::slice::from_ref(&input), 2, 4).unwrap().remove(0);
+    // Experts written as a user's training run would leave them: the shipped bedroom weights
+    // under an edited config.
+    let dir = tempfile::tempdir().unwrap();
+    let expert = |name: &str, edit: &dyn Fn(&mut serde_json::Value)| -> PathBuf {
+        let out = dir.path().join(name);
+        std::fs::create_dir_all(&out).unwrap();
+        let shipped = root().join("models/bedroom");
+        std::fs::copy(shipped.join("model.safetensors"), out.join("model.safetensors")).unwrap();
+        let mut config: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(shipped.join("config.json")).unwrap()).unwrap();
+        edit(&mut config);
+        std::fs::write(out.join("config.json"), config.to_string()).unwrap();
+        out
+    };
+    let with = |path: &Path| shipped.clone().with_expert(Checkpoint::load(path).unwrap(), path);
+    // The model itself as its own expert changes nothing, to the bit.
+    let same = expert("same", &|c| c["model"]["expert_below"] = 60.into());
+    assert_eq!(layouts(&with(&same).unwrap()), layouts(&shipped));
+    // Another denoiser in the last steps (the same weights read as an x₀ model) changes the rooms.
+    let other = expert("other", &|c| {
+        c["model"]["expert_below"] = 60.into();
+        c["model"]["prediction"] = "x0".into();
+    });
+    assert_ne!(layouts(&with(&other).unwrap()), layouts(&shipped));
+    // A model not trained as an expert, or one of another schedule, is refused, naming its folder.
+    let whole = expert("whole", &|_| {});
+    let err = with(&whole).unwrap_err().to_string();
+    assert!(err.starts_with(&whole.display().to_string()) && err.contains("--expert-below"), "{err}");
+    let linear = expert("linear", &|c| {
+        c["model"]["expert_below"] = 60.into();
+        c["model"]["schedule"] = "linear".into();
+    });
+    assert!(with(&linear).unwrap_err().to_string().contains("does not fit"));
+}
