@@ -7,7 +7,7 @@
 use anyhow::Context;
 use glam::DVec2;
 use shade_sim::export::{MjcfOptions, scene_mjcf};
-use shade_sim::generator::{Generator, shipped_model};
+use shade_sim::generator::shipped_generator;
 use shade_sim::motion::{ImportOptions, Placement, import_motion};
 use shade_sim::pipeline::{LayoutOptions, make_layouts};
 use shade_sim::scene::{FloorPlan, RoomType};
@@ -27,7 +27,7 @@ fn main() -> anyhow::Result<()> {
     println!("{}: {} rig, {:.2} m tall, {} frames", clip.display(), r.rig, r.stature, r.frames.1);
 
     // 2. Furnished by the shipped living-room model, repaired, resampled until the check passes.
-    let generator = Generator::new(shipped_model(RoomType::Living)?);
+    let generator = shipped_generator(RoomType::Living)?;
     let layouts = make_layouts(
         &generator,
         &[input],

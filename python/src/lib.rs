@@ -16,7 +16,7 @@ use pyo3::exceptions::{PyIndexError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 use shade_sim::export::{MjcfOptions, mocap_motion, robot_spot, scene_mjcf};
-use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig, shipped_model};
+use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig};
 use shade_sim::human::people_meeting;
 use shade_sim::pipeline::{LayoutOptions, make_grouped_layouts, people_in_walls_message, room_groups};
 use shade_sim::repair::RepairConfig;
@@ -208,7 +208,7 @@ fn shipped_generator(room: RoomType) -> PyResult<Arc<Generator>> {
     if let Some(g) = loaded.get(&room) {
         return Ok(g.clone());
     }
-    let generator = Arc::new(Generator::new(shipped_model(room).map_err(model_error)?));
+    let generator = Arc::new(shade_sim::generator::shipped_generator(room).map_err(model_error)?);
     loaded.insert(room, generator.clone());
     Ok(generator)
 }

@@ -9,7 +9,7 @@ use anyhow::Context;
 use clap::Args;
 use rayon::prelude::*;
 use shade_sim::export::{MjcfOptions, render_plan, scene_glb, scene_mjcf};
-use shade_sim::generator::{Generator, shipped_model};
+use shade_sim::generator::{Generator, shipped_generator};
 use shade_sim::pipeline::{LayoutOptions, make_grouped_layouts, room_groups};
 use shade_sim::scene::{Scene, write_atomic};
 use shade_sim::sim::{CheckConfig, check_scene};
@@ -53,7 +53,7 @@ pub fn run(args: &DemoArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     let bar = super::progress::bar(global, (inputs.len() * args.samples) as u64, "generate");
     let groups = room_groups(&inputs);
     let generators: Vec<Generator> =
-        groups.iter().map(|(room, _)| Ok(Generator::new(shipped_model(*room)?))).collect::<anyhow::Result<_>>()?;
+        groups.iter().map(|(room, _)| Ok(shipped_generator(*room)?)).collect::<anyhow::Result<_>>()?;
     let layouts =
         make_grouped_layouts(&inputs, &groups, &generators, &opts, &mut |done| bar.set_position(done as u64))?;
     let generated: Vec<Vec<Scene>> =

@@ -8,7 +8,7 @@ use super::{ExitStatus, GlobalArgs};
 use anyhow::Context;
 use clap::Args;
 use rayon::prelude::*;
-use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig, shipped_model};
+use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig, shipped_generator};
 use shade_sim::human::{Meeting, people_meeting};
 use shade_sim::pipeline::{LayoutOptions, make_grouped_layouts, people_in_walls_message, room_groups};
 use shade_sim::repair::{RepairConfig, RepairTotals};
@@ -139,21 +139,21 @@ impl GuidanceArgs {
     }
 }
 
-/// The model `custom` (loaded from `--model`), or the shipped one for `room`; fails when it does
-/// not generate `room`.
+/// The model `custom` (loaded from `--model`), or the shipped one for `room` with its shipped
+/// low-noise expert if it has one; fails when it does not generate `room`.
 pub fn load_model(custom: Option<&Checkpoint>, room: RoomType, input: &Path) -> anyhow::Result<Generator> {
-    let checkpoint = match custom {
-        Some(c) => c.clone(),
-        None => shipped_model(room)?,
+    let generator = match custom {
+        Some(c) => Generator::new(c.clone()),
+        None => shipped_generator(room)?,
     };
-    let model = &checkpoint.meta.model;
+    let model = &generator.checkpoint.meta.model;
     anyhow::ensure!(
         model.serves(room),
         "{}: is a {room} but the model generates {}",
         input.display(),
         model.room_names()
     );
-    Ok(Generator::new(checkpoint))
+    Ok(generator)
 }
 
 pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {

@@ -86,6 +86,11 @@ impl Generator {
         Ok(Generator { expert: Some(Box::new(expert)), ..self })
     }
 
+    /// The low-noise expert that takes the chain's last steps, if any ([`Generator::with_expert`]).
+    pub fn expert(&self) -> Option<&Checkpoint> {
+        self.expert.as_deref()
+    }
+
     /// The same generator refining each input's own pieces instead of sampling from pure noise
     /// (SDEdit): the input's layout is noised to the noise level of the linear schedule's step
     /// `strength` × T (0 < strength ≤ 1; 1 forgets the input, small values keep its make-up and

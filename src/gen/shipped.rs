@@ -1,8 +1,9 @@
-//! The models shipped in `models/<room>/`, embedded into the library at build time, so that
-//! `generate` and `demo` need no files beside the binary.
+//! The models shipped in `models/<room>/` (and the low-noise experts in `models/<room>-expert/`),
+//! embedded into the library at build time, so that `generate` and `demo` need no files beside
+//! the binary.
 
 use super::checkpoint::parse_meta;
-use super::{Checkpoint, GenError};
+use super::{Checkpoint, GenError, Generator};
 use crate::scene::RoomType;
 use std::path::PathBuf;
 
@@ -19,6 +20,26 @@ pub fn shipped_model(room: RoomType) -> Result<Checkpoint, GenError> {
         return Err(GenError::checkpoint(&origin, format!("shipped config is for {}", meta.model.room_names())));
     }
     Checkpoint::from_parts(meta, weights, &origin.join("model.safetensors"))
+}
+
+/// The shipped low-noise expert for `room` ([`super::ModelConfig::expert_below`]), if one was
+/// shipped (`models/<room>-expert/`).
+pub fn shipped_expert(room: RoomType) -> Result<Option<Checkpoint>, GenError> {
+    let Some((_, config, weights)) = SHIPPED_EXPERTS.iter().find(|(r, _, _)| *r == room.name()) else {
+        return Ok(None);
+    };
+    let origin = PathBuf::from(format!("models/{}-expert", room.name()));
+    let meta = parse_meta(config, &origin.join("config.json"))?;
+    Checkpoint::from_parts(meta, weights, &origin.join("model.safetensors")).map(Some)
+}
+
+/// The generator of the shipped model for `room`, with its shipped expert if it has one.
+pub fn shipped_generator(room: RoomType) -> Result<Generator, GenError> {
+    let generator = Generator::new(shipped_model(room)?);
+    match shipped_expert(room)? {
+        Some(expert) => generator.with_expert(expert, &PathBuf::from(format!("models/{}-expert", room.name()))),
+        None => Ok(generator),
+    }
 }
 
 /// Room types with a shipped model.
