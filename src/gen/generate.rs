@@ -57,7 +57,8 @@ impl Generator {
     /// [`expert_below`](super::ModelConfig::expert_below) to that low-noise expert. The expert
     /// must be this model's kind: the same conditioning, tokens, bounds and schedule (only its
     /// architecture, prediction and loss weighting may differ); `path`, its folder, names it in
-    /// the error.
+    /// the error. A self-conditioned expert starts its own chain of estimates from zeros at the
+    /// hand-over.
     pub fn with_expert(self, expert: Checkpoint, path: &std::path::Path) -> Result<Generator, GenError> {
         let (main, theirs) = (&self.checkpoint.meta, &expert.meta);
         let fail = |message: String| Err(GenError::Checkpoint { path: path.to_path_buf(), message });
