@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 
 #[derive(Debug, Args)]
 pub struct GenerateArgs {
-    /// Input scene (floor plan and humans; objects, if any, are ignored), or a folder of them.
+    /// Input scene (floor plan and humans; objects, if any, are ignored unless --refine), or a folder of them.
     #[arg(long)]
     pub input: PathBuf,
     /// Folder for the generated scenes.
