@@ -58,8 +58,13 @@ pub struct GenerateArgs {
     /// How much of DDPM's fresh noise each step draws (DDIM's η, 0 to 2): 1 is DDPM's ancestral
     /// sampler, 0 the deterministic DDIM sampler, above 1 more fresh noise than DDPM's posterior
     /// (docs/RESULTS.md, "DDIM").
-    #[arg(long, default_value_t = 1.0)]
-    pub eta: f64,
+    /// (Default: the model's own, DDPM's unless its config.json says otherwise.)
+    #[arg(long)]
+    pub eta: Option<f64>,
+    /// Apply --eta to the pieces' geometry only (centre, size, yaw), the classes keeping DDPM's
+    /// chain (the shipped dining model samples with 1.5 there).
+    #[arg(long, requires = "eta")]
+    pub eta_geometry_only: bool,
     /// With a count-conditioned model: condition each layout on the input's own pieces per
     /// category instead of a draw from the model's count prior (furnish a room with the pieces
     /// it has; the input's pieces are replaced as always).
@@ -159,7 +164,9 @@ pub fn load_model(custom: Option<&Checkpoint>, room: RoomType, input: &Path) -> 
 pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     anyhow::ensure!(args.samples > 0, "--samples: must be at least 1");
     anyhow::ensure!(args.sampling_steps.is_none_or(|n| n >= 2), "--sampling-steps: must be at least 2");
-    anyhow::ensure!((0.0..=2.0).contains(&args.eta), "--eta: must be between 0 and 2, not {}", args.eta);
+    if let Some(eta) = args.eta {
+        anyhow::ensure!((0.0..=2.0).contains(&eta), "--eta: must be between 0 and 2, not {eta}");
+    }
     anyhow::ensure!(
         args.refine.is_none_or(|r| r > 0.0 && r <= 1.0),
         "--refine: must be a number above 0 and at most 1"
@@ -191,7 +198,11 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
                 "--input-counts: the {room} model has no count conditioning (train one with --count-condition)"
             );
             let generator = if args.input_counts { generator.with_input_counts() } else { generator };
-            let generator = generator.with_eta(args.eta);
+            let generator = match (args.eta, args.eta_geometry_only) {
+                (Some(eta), true) => generator.with_geometry_eta(eta),
+                (Some(eta), false) => generator.with_eta(eta),
+                (None, _) => generator,
+            };
             let generator = match args.sampling_steps {
                 Some(n) => generator.with_sampling_steps(n),
                 None => generator,

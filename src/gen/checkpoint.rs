@@ -76,6 +76,19 @@ pub struct CheckpointMeta {
     /// among; absent in folders written before it existed, which sample without it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub seen_counts: Option<SeenCounts>,
+    /// How the model samples by default, chosen on its val split after training; absent: DDPM's
+    /// chain. `train` writes none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sampling: Option<SamplingDefaults>,
+}
+
+/// A model's default sampler settings (`config.json`'s `sampling`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SamplingDefaults {
+    /// DDIM's η on the pieces' geometry (centre, size, yaw; 0 to 2), the classes keeping DDPM's
+    /// chain ([`super::Generator::with_geometry_eta`]).
+    pub geometry_eta: f64,
 }
 
 /// A loaded model: metadata and the denoiser with its EMA weights.
@@ -151,6 +164,11 @@ pub fn parse_meta(text: &str, origin: &Path) -> Result<CheckpointMeta, GenError>
     }
     if !meta.bounds.is_valid() {
         return Err(GenError::checkpoint(origin, "bounds are not finite and ordered".to_string()));
+    }
+    if let Some(s) = &meta.sampling
+        && !(0.0..=2.0).contains(&s.geometry_eta)
+    {
+        return Err(GenError::checkpoint(origin, format!("sampling.geometry_eta {} is not in [0, 2]", s.geometry_eta)));
     }
     if let Some(problem) = count_prior_problem(&meta) {
         return Err(GenError::checkpoint(origin, problem));

@@ -37,10 +37,14 @@ pub struct Generator {
 }
 
 impl Generator {
-    /// A generator over `checkpoint`.
+    /// A generator over `checkpoint`, sampling as its config's `sampling` says (DDPM's chain
+    /// without one).
     pub fn new(checkpoint: Checkpoint) -> Generator {
         let schedule = Schedule::of(&checkpoint.meta.model);
-        let chain = Chain::full(&schedule);
+        let chain = match &checkpoint.meta.sampling {
+            Some(s) => Chain { eta: s.geometry_eta, ..Chain::full(&schedule) },
+            None => Chain::full(&schedule),
+        };
         Generator {
             checkpoint,
             schedule,
@@ -117,7 +121,14 @@ impl Generator {
     /// ([`Schedule::jump`]): 0 is the deterministic DDIM sampler, 1 (the default) DDPM's ancestral
     /// one, above 1 more noise drawn afresh.
     pub fn with_eta(self, eta: f64) -> Generator {
-        let chain = Chain { eta, ..self.chain };
+        let chain = Chain { eta, class_eta: eta, ..self.chain };
+        Generator { chain, ..self }
+    }
+
+    /// The same generator drawing `eta` times DDPM's fresh noise on the pieces' geometry alone
+    /// (centre, size, yaw), the classes keeping DDPM's chain.
+    pub fn with_geometry_eta(self, eta: f64) -> Generator {
+        let chain = Chain { eta, class_eta: 1.0, ..self.chain };
         Generator { chain, ..self }
     }
 

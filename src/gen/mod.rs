@@ -41,7 +41,7 @@ pub mod train;
 pub mod walls;
 
 pub use adamw::{AdamW, AdamWConfig};
-pub use checkpoint::{Checkpoint, CheckpointMeta, TrainingInfo};
+pub use checkpoint::{Checkpoint, CheckpointMeta, SamplingDefaults, TrainingInfo};
 pub use config::{AnchoredYaw, ModelConfig, NoiseSchedule, Prediction};
 pub use count_prior::CountPrior;
 pub use dataset::{Example, HostBatch, NoisyBatch, load_split, split_files};

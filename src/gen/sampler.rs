@@ -49,15 +49,18 @@ impl Projection {
 pub struct Chain {
     /// The steps visited, ascending ([`Schedule::respaced`]; all T for DDPM's chain).
     pub visited: Vec<usize>,
-    /// DDIM's η ([`Schedule::jump`]): 1 draws DDPM's posterior noise at every jump (the default),
-    /// 0 none (the deterministic DDIM sampler), above 1 more than DDPM's.
+    /// DDIM's η ([`Schedule::jump`]) of the pieces' geometry (centre, size, yaw): 1 draws DDPM's
+    /// posterior noise at every jump (the default), 0 none (the deterministic DDIM sampler),
+    /// above 1 more than DDPM's.
     pub eta: f64,
+    /// The same for the class features (`eta` unless set apart).
+    pub class_eta: f64,
 }
 
 impl Chain {
     /// DDPM's chain over all of `schedule`'s steps.
     pub fn full(schedule: &Schedule) -> Chain {
-        Chain { visited: schedule.respaced(schedule.steps()), eta: 1.0 }
+        Chain { visited: schedule.respaced(schedule.steps()), eta: 1.0, class_eta: 1.0 }
     }
 }
 
@@ -179,11 +182,30 @@ pub fn sample_from(
             Some(g) => frame(&g.guide(&frame(&x0, false)?, t)?, true)?,
             None => x0,
         };
-        let (c0, ct, var) = schedule.jump(t, i.checked_sub(1).map(|j| visited[j]), chain.eta);
-        let mean = ((x0 * c0)? + (&x * ct)?)?;
+        let next = i.checked_sub(1).map(|j| visited[j]);
+        let (c0, ct, var) = schedule.jump(t, next, chain.eta);
         // Detached so that nothing (a guidance gradient) chains the steps' graphs. DDIM's chain
         // (η 0) draws nothing after its start.
-        x = if i > 0 && var > 0.0 { (mean + (gaussian(&mut rngs)? * var.sqrt())?)? } else { mean }.detach();
+        x = if chain.class_eta == chain.eta {
+            let mean = ((x0 * c0)? + (&x * ct)?)?;
+            if i > 0 && var > 0.0 { (mean + (gaussian(&mut rngs)? * var.sqrt())?)? } else { mean }.detach()
+        } else {
+            // The geometry's coefficients on the first CLASS_OFFSET features of each token, the
+            // classes' on the rest.
+            let classes = schedule.jump(t, next, chain.class_eta);
+            let per_feature = |pick: fn((f64, f64, f64)) -> f64| -> Result<Tensor, GenError> {
+                let v: Vec<f32> = (0..cfg.token_dim())
+                    .map(|k| pick(if k < CLASS_OFFSET { (c0, ct, var) } else { classes }) as f32)
+                    .collect();
+                Ok(Tensor::from_vec(v, cfg.token_dim(), &Device::Cpu)?)
+            };
+            let mean = (x0.broadcast_mul(&per_feature(|c| c.0)?)? + x.broadcast_mul(&per_feature(|c| c.1)?)?)?;
+            match i > 0 && (var > 0.0 || classes.2 > 0.0) {
+                true => (mean + gaussian(&mut rngs)?.broadcast_mul(&per_feature(|c| c.2.sqrt())?)?)?,
+                false => mean,
+            }
+            .detach()
+        };
     }
     Ok(frame(&x, false)?.flatten_all()?.to_vec1::<f32>()?)
 }

@@ -358,6 +358,7 @@ pub fn train(
                     weights_hash: None,
                     count_prior: count_prior.clone(),
                     seen_counts: Some(seen_counts.clone()),
+                    sampling: None,
                 };
                 let state = StateMeta { step, adam_steps: adam.steps, seconds, val_loss, data_hash: data_hash.clone() };
                 save(&opts.out, &meta, &state, &layout, &params, &adam, &ema)?;
