@@ -182,30 +182,23 @@ pub fn sample_from(
             Some(g) => frame(&g.guide(&frame(&x0, false)?, t)?, true)?,
             None => x0,
         };
+        // The jump's coefficients (of x̂0, of x_t, the fresh noise's variance) with the geometry's η
+        // on the first CLASS_OFFSET features of each token and the classes' on the rest.
         let next = i.checked_sub(1).map(|j| visited[j]);
-        let (c0, ct, var) = schedule.jump(t, next, chain.eta);
+        let (geometry, classes) = (schedule.jump(t, next, chain.eta), schedule.jump(t, next, chain.class_eta));
+        let per_feature = |pick: fn((f64, f64, f64)) -> f64| -> Result<Tensor, GenError> {
+            let v: Vec<f32> =
+                (0..cfg.token_dim()).map(|k| pick(if k < CLASS_OFFSET { geometry } else { classes }) as f32).collect();
+            Ok(Tensor::from_vec(v, cfg.token_dim(), &Device::Cpu)?)
+        };
+        let mean = (x0.broadcast_mul(&per_feature(|c| c.0)?)? + x.broadcast_mul(&per_feature(|c| c.1)?)?)?;
         // Detached so that nothing (a guidance gradient) chains the steps' graphs. DDIM's chain
         // (η 0) draws nothing after its start.
-        x = if chain.class_eta == chain.eta {
-            let mean = ((x0 * c0)? + (&x * ct)?)?;
-            if i > 0 && var > 0.0 { (mean + (gaussian(&mut rngs)? * var.sqrt())?)? } else { mean }.detach()
-        } else {
-            // The geometry's coefficients on the first CLASS_OFFSET features of each token, the
-            // classes' on the rest.
-            let classes = schedule.jump(t, next, chain.class_eta);
-            let per_feature = |pick: fn((f64, f64, f64)) -> f64| -> Result<Tensor, GenError> {
-                let v: Vec<f32> = (0..cfg.token_dim())
-                    .map(|k| pick(if k < CLASS_OFFSET { (c0, ct, var) } else { classes }) as f32)
-                    .collect();
-                Ok(Tensor::from_vec(v, cfg.token_dim(), &Device::Cpu)?)
-            };
-            let mean = (x0.broadcast_mul(&per_feature(|c| c.0)?)? + x.broadcast_mul(&per_feature(|c| c.1)?)?)?;
-            match i > 0 && (var > 0.0 || classes.2 > 0.0) {
-                true => (mean + gaussian(&mut rngs)?.broadcast_mul(&per_feature(|c| c.2.sqrt())?)?)?,
-                false => mean,
-            }
-            .detach()
-        };
+        x = match i > 0 && (geometry.2 > 0.0 || classes.2 > 0.0) {
+            true => (mean + gaussian(&mut rngs)?.broadcast_mul(&per_feature(|c| c.2.sqrt())?)?)?,
+            false => mean,
+        }
+        .detach();
     }
     Ok(frame(&x, false)?.flatten_all()?.to_vec1::<f32>()?)
 }

@@ -28,7 +28,7 @@ pub fn shipped_expert(room: RoomType) -> Result<Option<Checkpoint>, GenError> {
     let Some((_, config, weights)) = SHIPPED_EXPERTS.iter().find(|(r, _, _)| *r == room.name()) else {
         return Ok(None);
     };
-    let origin = PathBuf::from(format!("models/{}-expert", room.name()));
+    let origin = expert_origin(room);
     let meta = parse_meta(config, &origin.join("config.json"))?;
     Checkpoint::from_parts(meta, weights, &origin.join("model.safetensors")).map(Some)
 }
@@ -37,9 +37,14 @@ pub fn shipped_expert(room: RoomType) -> Result<Option<Checkpoint>, GenError> {
 pub fn shipped_generator(room: RoomType) -> Result<Generator, GenError> {
     let generator = Generator::new(shipped_model(room)?);
     match shipped_expert(room)? {
-        Some(expert) => generator.with_expert(expert, &PathBuf::from(format!("models/{}-expert", room.name()))),
+        Some(expert) => generator.with_expert(expert, &expert_origin(room)),
         None => Ok(generator),
     }
+}
+
+/// Where `room`'s shipped expert came from, as its errors name it.
+fn expert_origin(room: RoomType) -> PathBuf {
+    PathBuf::from(format!("models/{}-expert", room.name()))
 }
 
 /// Room types with a shipped model.
