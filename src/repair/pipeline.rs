@@ -58,16 +58,6 @@ impl<'a> Workspace<'a> {
 pub enum StepReport {
     /// `settle`.
     Settle(SettleReport),
-    /// `relocate`: pieces moved to a free spot.
-    Relocate {
-        /// Pieces moved.
-        relocated: usize,
-    },
-    /// `wide_seats`: sofas widened.
-    WideSeats {
-        /// Sofas widened.
-        widened: usize,
-    },
     /// `fit_into_room`: pieces narrowed to fit the floor plan.
     FitIntoRoom {
         /// Pieces narrowed.
@@ -97,9 +87,7 @@ impl StepReport {
     pub fn changed(&self) -> usize {
         match *self {
             StepReport::Settle(s) => s.resized + s.turned + s.added + s.squared + s.walled,
-            StepReport::Relocate { relocated: n }
-            | StepReport::WideSeats { widened: n }
-            | StepReport::FitIntoRoom { narrowed: n }
+            StepReport::FitIntoRoom { narrowed: n }
             | StepReport::FitToBodies { fitted: n }
             | StepReport::LeftOut { left_out: n } => n,
             StepReport::Overlaps { narrowed, removed } => narrowed + removed,
@@ -163,8 +151,6 @@ impl RepairReport {
         for s in &self.steps {
             match *s {
                 StepReport::Settle(r) => t.settle = t.settle.plus(&r),
-                StepReport::Relocate { relocated } => t.relocated += relocated,
-                StepReport::WideSeats { widened } => t.widened += widened,
                 StepReport::FitIntoRoom { narrowed } => t.narrowed += narrowed,
                 StepReport::FitToBodies { fitted } => t.fitted += fitted,
                 StepReport::LeftOut { left_out } => t.left_out += left_out,
@@ -184,10 +170,6 @@ pub struct RepairTotals {
     /// What `settle` changed (rounds, resized, turned, added, squared, walled, max_move).
     #[serde(flatten)]
     pub settle: SettleReport,
-    /// Pieces moved to a free spot.
-    pub relocated: usize,
-    /// Sofas widened.
-    pub widened: usize,
     /// Pieces narrowed (into the room, off paths, out of overlaps).
     pub narrowed: usize,
     /// Pieces reshaped out of bones.
@@ -205,8 +187,6 @@ impl std::iter::Sum for RepairTotals {
     fn sum<I: Iterator<Item = RepairTotals>>(iter: I) -> RepairTotals {
         iter.fold(RepairTotals::default(), |a, t| RepairTotals {
             settle: a.settle.plus(&t.settle),
-            relocated: a.relocated + t.relocated,
-            widened: a.widened + t.widened,
             narrowed: a.narrowed + t.narrowed,
             fitted: a.fitted + t.fitted,
             left_out: a.left_out + t.left_out,

@@ -447,3 +447,23 @@ fn a_piece_through_a_wall_ends_the_configs_gap_inside() {
         assert!(west >= gap - 1e-9 && west < gap + 0.01, "gap {gap}: the piece's west side at {west}");
     }
 }
+
+#[test]
+fn a_loveseat_too_short_for_its_sleeper_ends_with_no_bone_in_it() {
+    // A 1.75 m person lying along a 1.7 m loveseat, centred on it, head and feet in its arms (the
+    // case a deleted step, `wide_seats`, widened for; docs/RESULTS.md): the default pipeline's
+    // `fit_to_bodies` must take them out of it, the sleeper still held.
+    use crate::scene::Category;
+    use crate::sim::{CheckConfig, ViolationKind, check_scene};
+    let sofa = Object::standing("o0", Category::LoveseatSofa, [3.0, 0.46], [1.7, 0.9, 0.85]);
+    let seat = template(&sofa).surface.expect("a sofa has a seat");
+    let at = DVec2::new(3.0 - 0.05 * 1.75, 0.46 + (seat.min.y + seat.max.y) * 0.5);
+    let (mut scene, _) = super::occupancy::sofa_with_sleeper(RoomType::Living, sofa, 1.75, at);
+    let cfg = CheckConfig::default();
+    let before = check_scene(&scene, &cfg);
+    assert!(before.count(ViolationKind::Penetration) > 0, "the head and feet start in the arms");
+    repair_with_rounds(&mut scene, 60);
+    let after = check_scene(&scene, &cfg);
+    assert!(after.is_clean(), "{:?}", after.violations);
+    assert_eq!(scene.objects.len(), 1, "the sleeper keeps their sofa");
+}
