@@ -71,13 +71,14 @@ pub fn run(args: &RepairArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus>
         let t: RepairTotals = reports.iter().map(|r| r.totals).sum();
         print_text(&format!(
             "{} scenes repaired into {}: {moved} changed, largest move {:.3} m; objects: {} resized, {} added, \
-             {} narrowed, {} fitted to bodies, {} left out, {} removed; {} passing layouts kept as given (repair \
+             {} relocated, {} narrowed, {} fitted to bodies, {} left out, {} removed; {} passing layouts kept as given (repair \
              made them fail)\n",
             reports.len(),
             out_dir.display(),
             t.settle.max_move,
             t.settle.resized,
             t.settle.added,
+            t.relocated,
             t.narrowed,
             t.fitted,
             t.left_out,

@@ -18,6 +18,8 @@ pub enum StepName {
     /// Contact boxes assigned to pieces, missing pieces added, seats turned and fitted, pieces
     /// squared and put against walls, rounds of small moves (`settle`).
     Settle,
+    /// Pieces holding nobody moved out of people's way to a free spot (`relocate`).
+    Relocate,
     /// Pieces poking out of the floor plan moved or narrowed inside (`fit_into_room`).
     FitIntoRoom,
     /// Pieces reshaped out of the bones that still enter them (`fit_to_bodies`).
@@ -30,13 +32,20 @@ pub enum StepName {
 
 impl StepName {
     /// Every step, in the order the default pipeline runs them.
-    pub const ALL: [StepName; 5] =
-        [StepName::Settle, StepName::FitIntoRoom, StepName::FitToBodies, StepName::LeftOut, StepName::Overlaps];
+    pub const ALL: [StepName; 6] = [
+        StepName::Settle,
+        StepName::Relocate,
+        StepName::FitIntoRoom,
+        StepName::FitToBodies,
+        StepName::LeftOut,
+        StepName::Overlaps,
+    ];
 
     /// The name as the config and reports spell it.
     pub fn as_str(self) -> &'static str {
         match self {
             StepName::Settle => "settle",
+            StepName::Relocate => "relocate",
             StepName::FitIntoRoom => "fit_into_room",
             StepName::FitToBodies => "fit_to_bodies",
             StepName::LeftOut => "left_out",
@@ -68,8 +77,10 @@ pub struct RepairConfig {
     pub settle: SettleConfig,
     /// How far a step may narrow a piece (`fit_into_room`, `overlaps`).
     pub narrowing: NarrowingConfig,
-    /// Where a piece stands against a wall (`settle`).
+    /// Where a piece stands against a wall (`settle`, `relocate`).
     pub walls: WallsConfig,
+    /// `relocate`'s settings.
+    pub relocate: RelocateConfig,
     /// `fit_into_room`'s settings.
     pub fit_into_room: FitIntoRoomConfig,
     /// `fit_to_bodies`' settings.
@@ -91,6 +102,7 @@ impl Default for RepairConfig {
             settle: SettleConfig::default(),
             narrowing: NarrowingConfig::default(),
             walls: WallsConfig::default(),
+            relocate: RelocateConfig::default(),
             fit_into_room: FitIntoRoomConfig::default(),
             fit_to_bodies: FitToBodiesConfig::default(),
             left_out: LeftOutConfig::default(),
@@ -225,17 +237,35 @@ impl Default for NarrowingConfig {
     }
 }
 
-/// Which walls a piece can stand against.
+/// Which walls a piece can stand against, and where along them.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct WallsConfig {
     /// Share of a piece's side a wall must face to count as behind it (default 0.6).
     pub facing_share: f64,
+    /// Spacing of the spots along each wall a free piece may move to (m, default 0.1).
+    pub spot_step: f64,
 }
 
 impl Default for WallsConfig {
     fn default() -> WallsConfig {
-        WallsConfig { facing_share: 0.6 }
+        WallsConfig { facing_share: 0.6, spot_step: 0.1 }
+    }
+}
+
+/// `relocate`: the grid of free spots a piece holding nobody may move to.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RelocateConfig {
+    /// Spacing of the grid of candidate centres (m, default 0.1).
+    pub grid_step: f64,
+    /// Farthest move (m, default 3.0).
+    pub max_move: f64,
+}
+
+impl Default for RelocateConfig {
+    fn default() -> RelocateConfig {
+        RelocateConfig { grid_step: 0.1, max_move: 3.0 }
     }
 }
 
@@ -372,6 +402,7 @@ impl RepairConfig {
             ("settle.max_step", s.max_step),
             ("settle.place_width", s.place_width),
             ("narrowing.max", self.narrowing.max),
+            ("relocate.max_move", self.relocate.max_move),
             ("fit_to_bodies.min_gain", self.fit_to_bodies.min_gain),
             ("left_out.sits_at_reach", self.left_out.sits_at_reach),
             ("left_out.sits_at_above", self.left_out.sits_at_above),
@@ -406,6 +437,14 @@ impl RepairConfig {
         if s.place_width < 0.1 {
             return Err(("settle.place_width".into(), format!("{} is narrower than 0.1 m", s.place_width)));
         }
+        let spot = self.walls.spot_step;
+        if !(spot.is_finite() && (0.01..=100.0).contains(&spot)) {
+            return Err(("walls.spot_step".into(), format!("{spot} is not between 0.01 m and 100 m")));
+        }
+        let step = self.relocate.grid_step;
+        if !(step.is_finite() && step >= 0.01 && step <= self.relocate.max_move.max(0.01)) {
+            return Err(("relocate.grid_step".into(), format!("{step} is not between 0.01 m and relocate.max_move")));
+        }
         let counts = [
             ("settle.rounds", s.rounds),
             ("settle.pathless_rounds", s.pathless_rounds),
@@ -439,7 +478,7 @@ mod tests {
     #[test]
     fn an_empty_object_is_the_default_pipeline() {
         assert_eq!(RepairConfig::from_json("{}").unwrap(), RepairConfig::default());
-        assert_eq!(RepairConfig::default().steps.len(), 5);
+        assert_eq!(RepairConfig::default().steps.len(), 6);
     }
 
     #[test]
@@ -460,6 +499,7 @@ mod tests {
         assert_eq!(field(r#"{"settle": {"max_step": 1e300}}"#), "settle.max_step");
         assert_eq!(field(r#"{"settle": {"covered": 1.5}}"#), "settle.covered");
         assert_eq!(field(r#"{"fit_to_bodies": {"rounds": 100000}}"#), "fit_to_bodies.rounds");
+        assert_eq!(field(r#"{"relocate": {"grid_step": 0}}"#), "relocate.grid_step");
         assert_eq!(field(r#"{"gap": -0.01}"#), "gap");
         assert_eq!(field(r#"{"holding": {"top_touch_height": "high"}}"#), "holding.top_touch_height");
         assert_eq!(field(r#"{"completion": {"side_margin": 1e9}}"#), "completion.side_margin");
@@ -470,11 +510,8 @@ mod tests {
         assert_eq!(field(r#"{"sofas_to_sleepers": {"off_middle": 0.03}}"#), "sofas_to_sleepers");
         assert_eq!(field(r#"{"steps": ["settle", "off_bodies"]}"#), "steps[1]");
         assert_eq!(field(r#"{"off_bodies": {"rounds": 4}}"#), "off_bodies");
-        assert_eq!(field(r#"{"steps": ["settle", "relocate"]}"#), "steps[1]");
-        assert_eq!(field(r#"{"relocate": {"grid_step": 0.1}}"#), "relocate");
         assert_eq!(field(r#"{"steps": ["wide_seats"]}"#), "steps[0]");
         assert_eq!(field(r#"{"wide_seats": {"margin": 0.01}}"#), "wide_seats");
-        assert_eq!(field(r#"{"walls": {"spot_step": 0.1}}"#), "walls.spot_step");
         assert_eq!(field(r#"{"fit_into_room": {"cuts": 5000}}"#), "fit_into_room.cuts");
         assert_eq!(field(r#"{"fit_to_bodies": {"margin": 0.03}}"#), "fit_to_bodies.margin");
         assert_eq!(field(r#"{"fit_to_bodies": {"max_tries": 1000000}}"#), "fit_to_bodies.max_tries");

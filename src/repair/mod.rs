@@ -10,6 +10,7 @@
 //! | step | does | reads (`RepairConfig` sections) |
 //! |---|---|---|
 //! | `settle` | contact boxes given to pieces that afford them (a real piece added for a box none can hold), seats turned and fitted to their people, pieces squared and put back against walls, rounds of moves: under their people, off paths, apart, inside | `settle`, `holding`, `completion`, `walls`, `gap` |
+//! | `relocate` | a piece holding nobody still in people's way moved to a free spot | `relocate`, `walls`, `gap` |
 //! | `fit_into_room` | a piece poking out of the floor plan is moved back or narrowed | `fit_into_room`, `narrowing`, `holding`, `gap` |
 //! | `fit_to_bodies` | a piece that bones still enter is moved, turned or reshaped a few centimetres at a time, everybody supported kept supported (a piece that holds people may become another category that affords what they do) | `fit_to_bodies`, `gap` |
 //! | `left_out` | a piece holding nobody that people still pass through is left out | `left_out` |
@@ -30,6 +31,7 @@ mod left_out;
 mod occupancy;
 mod overlaps;
 mod pipeline;
+mod relocate;
 mod settle;
 #[cfg(test)]
 pub(crate) mod tests;
@@ -39,7 +41,7 @@ pub use clearance::Clearance;
 pub use completion::SeatGaps;
 pub use config::{
     CompletionConfig, FitIntoRoomConfig, FitToBodiesConfig, HoldingConfig, LeftOutConfig, NarrowingConfig,
-    RepairConfig, RepairConfigError, SettleConfig, StepName, WallsConfig,
+    RelocateConfig, RepairConfig, RepairConfigError, SettleConfig, StepName, WallsConfig,
 };
 pub use occupancy::Occupancy;
 pub use pipeline::{Pipeline, RepairReport, RepairStep, RepairTotals, SettleReport, StepReport, Workspace};
@@ -51,6 +53,7 @@ use crate::scene::Scene;
 pub fn step(name: StepName) -> Box<dyn RepairStep> {
     match name {
         StepName::Settle => Box::new(settle::Settle),
+        StepName::Relocate => Box::new(relocate::Relocate),
         StepName::FitIntoRoom => Box::new(fit_into_room::FitIntoRoom),
         StepName::FitToBodies => Box::new(fit_to_bodies::FitToBodies),
         StepName::LeftOut => Box::new(left_out::LeftOut),

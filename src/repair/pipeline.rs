@@ -58,6 +58,11 @@ impl<'a> Workspace<'a> {
 pub enum StepReport {
     /// `settle`.
     Settle(SettleReport),
+    /// `relocate`: pieces moved to a free spot.
+    Relocate {
+        /// Pieces moved.
+        relocated: usize,
+    },
     /// `fit_into_room`: pieces narrowed to fit the floor plan.
     FitIntoRoom {
         /// Pieces narrowed.
@@ -87,7 +92,8 @@ impl StepReport {
     pub fn changed(&self) -> usize {
         match *self {
             StepReport::Settle(s) => s.resized + s.turned + s.added + s.squared + s.walled,
-            StepReport::FitIntoRoom { narrowed: n }
+            StepReport::Relocate { relocated: n }
+            | StepReport::FitIntoRoom { narrowed: n }
             | StepReport::FitToBodies { fitted: n }
             | StepReport::LeftOut { left_out: n } => n,
             StepReport::Overlaps { narrowed, removed } => narrowed + removed,
@@ -151,6 +157,7 @@ impl RepairReport {
         for s in &self.steps {
             match *s {
                 StepReport::Settle(r) => t.settle = t.settle.plus(&r),
+                StepReport::Relocate { relocated } => t.relocated += relocated,
                 StepReport::FitIntoRoom { narrowed } => t.narrowed += narrowed,
                 StepReport::FitToBodies { fitted } => t.fitted += fitted,
                 StepReport::LeftOut { left_out } => t.left_out += left_out,
@@ -170,6 +177,8 @@ pub struct RepairTotals {
     /// What `settle` changed (rounds, resized, turned, added, squared, walled, max_move).
     #[serde(flatten)]
     pub settle: SettleReport,
+    /// Pieces moved to a free spot.
+    pub relocated: usize,
     /// Pieces narrowed (into the room, off paths, out of overlaps).
     pub narrowed: usize,
     /// Pieces reshaped out of bones.
@@ -187,6 +196,7 @@ impl std::iter::Sum for RepairTotals {
     fn sum<I: Iterator<Item = RepairTotals>>(iter: I) -> RepairTotals {
         iter.fold(RepairTotals::default(), |a, t| RepairTotals {
             settle: a.settle.plus(&t.settle),
+            relocated: a.relocated + t.relocated,
             narrowed: a.narrowed + t.narrowed,
             fitted: a.fitted + t.fitted,
             left_out: a.left_out + t.left_out,

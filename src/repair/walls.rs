@@ -7,13 +7,14 @@
 //! facing a side over most of its width are found: a piece that holds nobody may be turned to put
 //! its back to any of them and moved there, `WALL_GAP` from it ([`wall_poses`]; the caller picks
 //! the pose least in people's way); a piece that holds people is not turned and only moves towards
-//! the wall behind its back, as far as its people stay on it (the caller limits the move). This
-//! module only computes poses; it does not look at people or other pieces.
+//! the wall behind its back, as far as its people stay on it (the caller limits the move). A wall
+//! for relocating a piece anywhere along it: [`wall_spots`]. This module only computes poses; it
+//! does not look at people or other pieces.
 
 use super::config::WallsConfig;
 use crate::data::layout::WALL_GAP;
 pub use crate::data::stands_against_wall;
-use crate::geom::{OBox, Polygon};
+use crate::geom::{OBox, Polygon, yaw_facing};
 use glam::DVec2;
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -36,6 +37,25 @@ pub fn wall_poses(b: &OBox, polygon: &Polygon, cfg: &WallsConfig) -> Vec<(f64, D
         .collect();
     poses.sort_by(|x, y| x.0.cmp(&y.0).then(x.1.total_cmp(&y.1)));
     poses.into_iter().map(|(_, _, yaw, m)| (yaw, m)).collect()
+}
+
+/// The poses (yaw, centre) that stand a `width` × `depth` footprint with its back `WALL_GAP` from
+/// a wall of `polygon`, facing into the room: along every wall longer than it, every `SPOT_STEP`
+/// from one end and the spot nearest `near`. Whether a pose fits the room (corners, other walls) is
+/// left to the caller.
+pub fn wall_spots(width: f64, depth: f64, near: DVec2, polygon: &Polygon, cfg: &WallsConfig) -> Vec<(f64, DVec2)> {
+    let mut spots = Vec::new();
+    for wall in polygon.walls() {
+        let (lo, hi) = (width * 0.5, wall.length - width * 0.5);
+        if hi < lo {
+            continue;
+        }
+        let at = |t: f64| (yaw_facing(wall.inward), wall.point(t, depth * 0.5 + WALL_GAP));
+        let steps = ((hi - lo) / cfg.spot_step).floor() as usize;
+        spots.extend((0..=steps).map(|k| at(lo + k as f64 * cfg.spot_step)));
+        spots.push(at((near - wall.start).dot(wall.along).clamp(lo, hi)));
+    }
+    spots
 }
 
 /// The move (world, m) that puts `b`'s back `WALL_GAP` from the wall behind it, unturned; `None`
