@@ -4,7 +4,9 @@
 //! a dining room with sitters on both sides of one table; an L-shaped living room with two sitters
 //! side by side and a walker round the corner, a bedroom with a sleeper, a person at a desk and a
 //! walker between them, four diners with a walker behind one row, a reader and a person reaching
-//! up to a wall shelf; and one input no layout can make pass (a sitter's feet in the wall).
+//! up to a wall shelf; a couple on one bed with a walker past its foot, six diners in an L-shaped
+//! room, two walkers crossing a living room; and one input no layout can make pass (a sitter's
+//! feet in the wall).
 //!
 //! ```sh
 //! cargo run --release --example hand_built_inputs -- tests/inputs
@@ -182,6 +184,57 @@ fn main() -> anyhow::Result<()> {
                     sitter("reader", [2.5, 1.0], 0.44, 0.0),
                     toucher("reach", [4.5, 3.6, 1.2], 0.0),
                     walker("cross", &[[0.4, 3.5], [3.0, 2.6]]),
+                ],
+            ),
+        ),
+        // A couple lying on one bed against the top wall, a walker 65 cm past its foot, and a
+        // person reaching to a wardrobe's front on the right.
+        (
+            "bedroom_couple_walker_at_foot",
+            scene(
+                RoomType::Bedroom,
+                rect(3.8, 4.0),
+                vec![
+                    lier("left", [1.5, 3.0], 0.5, 180.0),
+                    lier("right", [2.2, 3.0], 0.5, 180.0),
+                    walker("foot", &[[0.3, 1.3], [3.5, 1.3]]),
+                    toucher("closet", [3.15, 2.6, 1.3], -90.0),
+                ],
+            ),
+        ),
+        // An L-shaped dining room: six diners, three a side of one table in the wide arm, and a
+        // walker coming down the narrow arm and past the table's west end.
+        (
+            "l_dining_six",
+            scene(
+                RoomType::Dining,
+                FloorPlan {
+                    polygon: vec![[0.0, 0.0], [5.5, 0.0], [5.5, 3.2], [2.5, 3.2], [2.5, 5.0], [0.0, 5.0]],
+                    height: 2.7,
+                },
+                vec![
+                    sitter("north_1", [2.3, 2.25], 0.46, 180.0),
+                    sitter("north_2", [3.0, 2.25], 0.46, 180.0),
+                    sitter("north_3", [3.7, 2.25], 0.46, 180.0),
+                    sitter("south_1", [2.3, 0.95], 0.46, 0.0),
+                    sitter("south_2", [3.0, 0.95], 0.46, 0.0),
+                    sitter("south_3", [3.7, 0.95], 0.46, 0.0),
+                    walker("down", &[[1.2, 4.7], [1.2, 2.0], [0.4, 0.5]]),
+                ],
+            ),
+        ),
+        // Two walkers crossing a living room, a reader in a corner facing into it, and a hand
+        // resting on a low piece by the east wall.
+        (
+            "living_crossing_walkers",
+            scene(
+                RoomType::Living,
+                rect(5.5, 4.5),
+                vec![
+                    sitter("corner", [0.75, 0.6], 0.44, -45.0),
+                    walker("a", &[[0.4, 1.6], [5.1, 3.8]]),
+                    walker("b", &[[1.0, 4.1], [4.5, 0.4]]),
+                    toucher("top", [5.2, 1.2, 0.9], -90.0),
                 ],
             ),
         ),
