@@ -5,8 +5,8 @@
 //! side by side and a walker round the corner, a bedroom with a sleeper, a person at a desk and a
 //! walker between them, four diners with a walker behind one row, a reader and a person reaching
 //! up to a wall shelf; a couple on one bed with a walker past its foot, six diners in an L-shaped
-//! room, two walkers crossing a living room; and one input no layout can make pass (a sitter's
-//! feet in the wall).
+//! room, two walkers crossing a living room, a child on a 30 cm seat, a nap on the sofa; and one
+//! input no layout can make pass (a sitter's feet in the wall).
 //!
 //! ```sh
 //! cargo run --release --example hand_built_inputs -- tests/inputs
@@ -28,7 +28,12 @@ fn rect(w: f64, d: f64) -> FloorPlan {
 
 /// Yaws are the scene format's: 0° faces +y, 90° faces −x (counter-clockwise from +y).
 fn sitter(id: &str, at: [f64; 2], seat: f64, yaw_deg: f64) -> Human {
-    let body = Body::new(1.72);
+    sitter_of(id, 1.72, at, seat, yaw_deg)
+}
+
+/// A sitter of `stature` (m).
+fn sitter_of(id: &str, stature: f64, at: [f64; 2], seat: f64, yaw_deg: f64) -> Human {
+    let body = Body::new(stature);
     let pose = sit(&body, DVec2::from(at), seat, yaw_deg.to_radians());
     let mut m = Motion::new(body, FPS);
     m.hold(pose, 20, Action::Sit);
@@ -235,6 +240,30 @@ fn main() -> anyhow::Result<()> {
                     walker("a", &[[0.4, 1.6], [5.1, 3.8]]),
                     walker("b", &[[1.0, 4.1], [4.5, 0.4]]),
                     toucher("top", [5.2, 1.2, 0.9], -90.0),
+                ],
+            ),
+        ),
+        // A 1.15 m child on a 30 cm seat (lower than any seat in the furniture catalog) facing the
+        // top wall, and a walker down the far side of the room.
+        (
+            "child_on_a_low_seat",
+            scene(
+                RoomType::Bedroom,
+                rect(3.2, 3.4),
+                vec![sitter_of("child", 1.15, [1.0, 2.7], 0.30, 0.0), walker("by", &[[2.8, 0.3], [2.8, 3.1]])],
+            ),
+        ),
+        // A nap on the sofa against the bottom wall (lying along it, feet to the west), a walker
+        // across the room and a viewer facing the sofa from across it.
+        (
+            "nap_on_the_sofa",
+            scene(
+                RoomType::Living,
+                rect(4.6, 4.0),
+                vec![
+                    lier("nap", [2.3, 0.5], 0.42, 90.0),
+                    walker("cross", &[[0.3, 2.4], [4.3, 2.4]]),
+                    sitter("viewer", [3.8, 3.4], 0.44, 180.0),
                 ],
             ),
         ),

@@ -16,17 +16,21 @@
 //! goes no further out of the floor plan or into any other piece, and each of its sizes stays
 //! within its category's real sizes (or no further outside them). Where no shape of a piece that
 //! holds people is clear of the bodies, the same search runs from each other category that affords
-//! what they do on it (a sofa whose sitter sits 30 cm from a wall becomes a stool); a piece that
-//! holds nobody keeps its category. One mechanism for every way a piece can meet a body; it knows
-//! nothing of what the piece or the body is.
+//! what they do on it (a sofa whose sitter sits 30 cm from a wall becomes a stool): started where
+//! the piece stands and, where none of those ends clear, under its people and as tall as their
+//! seat (within the 15 cm of real heights that guidance and `eval` allow; a kids' bed under a child
+//! on a 30 cm seat becomes a low chair). A piece that holds nobody keeps its category. One
+//! mechanism for every way a piece can meet a body; it knows nothing of what the piece or the body
+//! is.
 //!
 //! Nothing changes when no change helps; hanging pieces are left alone.
 
+use super::completion::height_for_surface;
 use super::config::{RepairConfig, StepName};
 use super::helpers::worst_offence;
 use super::occupancy::Occupancy;
 use super::pipeline::{RepairStep, StepReport, Workspace};
-use crate::furniture::{beyond_real, size_range};
+use crate::furniture::{REAL_SIZE_MARGIN, beyond_real, height_range, size_range};
 use crate::geom::{Polygon, intersection_volume};
 use crate::physics::{EngineContact, Owner, PHYS_TOLERANCE, Physics};
 use crate::scene::{Action, Category, Object, Scene};
@@ -193,40 +197,73 @@ fn as_category(o: &Object, category: Category) -> Object {
     c
 }
 
+/// `o` as its people need it: unturned, centred under them (world xy) and as tall as puts its
+/// sitting or lying surface at `surface` (the top of their contact boxes), standing on the floor —
+/// within its category's real heights widened by [`REAL_SIZE_MARGIN`], as far as guidance and
+/// `eval` count a piece real.
+fn under_people(o: &Object, held: &Held) -> Object {
+    let mut c = o.clone();
+    c.center[0] = held.under.x;
+    c.center[1] = held.under.y;
+    let (lo, hi) = height_range(c.category);
+    c.size[2] =
+        height_for_surface(c.category, c.size, held.surface).clamp(lo - REAL_SIZE_MARGIN, hi + REAL_SIZE_MARGIN);
+    c.center[2] = c.size[2] * 0.5;
+    c
+}
+
+/// What a piece must hold, for the search under other categories: the actions its people do on
+/// it, the middle of their contact boxes (world xy) and the highest of their tops (m). No actions
+/// when it holds nobody.
+struct Held {
+    affords: Vec<Action>,
+    under: DVec2,
+    surface: f64,
+}
+
 /// Reshapes object `i` of `scene` while that takes bones out of it ([`changes`]); where that
 /// leaves bones in it, tries it as each other category that affords what its people do
-/// (`affords`; none when it holds nobody) — the few whose starting shape the bones enter least —
-/// reshaped the same way, and takes the one nearest its size that leaves no bone in it. Returns
-/// whether it changed.
-fn fit_piece(scene: &mut Scene, i: usize, affords: &[Action], physics: &dyn Physics, config: &RepairConfig) -> bool {
+/// (`held`; none when it holds nobody) — the few whose starting shape the bones enter least —
+/// reshaped the same way, and takes the one nearest its size that leaves no bone in it. The other
+/// categories start where the piece stands; where none of those ends clean, they start again
+/// under its people, as tall as their seat ([`under_people`]: a bed under a child on a 30 cm seat,
+/// whose stool must stand beneath the child and that low). Returns whether it changed.
+fn fit_piece(scene: &mut Scene, i: usize, held: &Held, physics: &dyn Physics, config: &RepairConfig) -> bool {
     let tolerance = PHYS_TOLERANCE - config.fit_to_bodies.margin;
     let given = scene.objects[i].clone();
     let start = physics.piece_fit(scene, i, tolerance);
     let search = Search { i, physics, config, tolerance, unsupported: start.unsupported, tries: Default::default() };
     let mut best = search.run(scene, given.clone(), start.depth);
-    if best.1 > 0.0 && config.fit_to_bodies.other_categories && !affords.is_empty() {
-        let others = scene
+    if best.1 > 0.0 && config.fit_to_bodies.other_categories && !held.affords.is_empty() {
+        let others: Vec<Category> = scene
             .room_type
             .categories()
             .iter()
-            .filter(|&&c| c != given.category && !c.is_hanging() && affords.iter().all(|&a| c.affords(a)));
-        let size_change = |o: &Object| (0..3).map(|k| (o.size[k] - given.size[k]).abs()).sum::<f64>();
-        // The categories whose starting shape the bones enter least are searched.
-        let mut starts: Vec<(Object, f64)> = others
-            .filter_map(|&category| {
-                let from = as_category(&given, category);
-                search.depth(scene, &from).map(|d| (from, d))
-            })
+            .copied()
+            .filter(|&c| c != given.category && !c.is_hanging() && held.affords.iter().all(|&a| c.affords(a)))
             .collect();
-        starts.sort_by(|a, b| a.1.total_cmp(&b.1));
-        starts.truncate(config.fit_to_bodies.categories_searched);
-        let mut clean: Option<Object> = None;
-        for (from, depth) in starts {
-            let (o, d) = search.run(scene, from, depth);
-            if d <= 0.0 && clean.as_ref().is_none_or(|c| size_change(&o) < size_change(c)) {
-                clean = Some(o);
+        let size_change = |o: &Object| (0..3).map(|k| (o.size[k] - given.size[k]).abs()).sum::<f64>();
+        // From each start, the categories whose starting shape the bones enter least are searched.
+        let mut search_from = |place: &dyn Fn(Object) -> Object| -> Option<Object> {
+            let mut starts: Vec<(Object, f64)> = others
+                .iter()
+                .filter_map(|&category| {
+                    let from = place(as_category(&given, category));
+                    search.depth(scene, &from).map(|d| (from, d))
+                })
+                .collect();
+            starts.sort_by(|a, b| a.1.total_cmp(&b.1));
+            starts.truncate(config.fit_to_bodies.categories_searched);
+            let mut clean: Option<Object> = None;
+            for (from, depth) in starts {
+                let (o, d) = search.run(scene, from, depth);
+                if d <= 0.0 && clean.as_ref().is_none_or(|c| size_change(&o) < size_change(c)) {
+                    clean = Some(o);
+                }
             }
-        }
+            clean
+        };
+        let clean = search_from(&|o| o).or_else(|| search_from(&|o| under_people(&o, held)));
         if let Some(o) = clean {
             best = (o, 0.0);
         }
@@ -255,8 +292,11 @@ fn fit_to_bodies(
     entered.dedup();
     let mut fitted = 0;
     for i in entered {
-        let affords: Vec<Action> = people.held_by(i).iter().map(|(c, _)| c.action).collect();
-        fitted += usize::from(fit_piece(scene, i, &affords, physics, config));
+        let boxes = people.held_by(i);
+        let under = boxes.iter().map(|(c, _)| c.obox.center.truncate()).sum::<DVec2>() / boxes.len().max(1) as f64;
+        let surface = boxes.iter().map(|(c, _)| c.obox.center.z + c.obox.size.z * 0.5).fold(0.0, f64::max);
+        let held = Held { affords: boxes.iter().map(|(c, _)| c.action).collect(), under, surface };
+        fitted += usize::from(fit_piece(scene, i, &held, physics, config));
     }
     fitted
 }

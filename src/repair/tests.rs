@@ -467,3 +467,31 @@ fn a_loveseat_too_short_for_its_sleeper_ends_with_no_bone_in_it() {
     assert!(after.is_clean(), "{:?}", after.violations);
     assert_eq!(scene.objects.len(), 1, "the sleeper keeps their sofa");
 }
+
+#[test]
+fn a_child_on_a_30_cm_seat_gets_a_seat_that_low_under_them() {
+    // A 1.15 m child sitting 30 cm above the floor, and the kids' bed a model put under them: no
+    // real bed is that low, so `fit_to_bodies` searches the other seats, started under the child
+    // and as low as their seat, and ends with one within 15 cm of its category's real heights.
+    use crate::furniture::{REAL_SIZE_MARGIN, beyond_real};
+    use crate::human::{Body, Motion, sit};
+    use crate::scene::Category;
+    use crate::sim::{CheckConfig, check_scene};
+    let mut scene = generate_room(RoomType::Bedroom, 3, 0, false).scene;
+    scene.floor_plan.polygon = vec![[0.0, 0.0], [3.2, 0.0], [3.2, 3.4], [0.0, 3.4]];
+    let body = Body::new(1.15);
+    let mut m = Motion::new(body, 10.0);
+    m.hold(sit(&body, DVec2::new(1.0, 2.7), 0.30, 0.0), 20, Action::Sit);
+    scene.humans = vec![m.into_human("child")];
+    let mut bed = Object::standing("o0", Category::KidsBed, [1.0, 2.23], [0.93, 1.9, 0.51]);
+    bed.yaw = -std::f64::consts::FRAC_PI_2;
+    scene.objects = vec![bed];
+    let cfg = CheckConfig::default();
+    assert!(!check_scene(&scene, &cfg).is_clean(), "the child starts 10 cm inside the bed");
+    repair_with_rounds(&mut scene, 60);
+    let after = check_scene(&scene, &cfg);
+    assert!(after.is_clean(), "{:?}", after.violations);
+    let seat = &scene.objects[0];
+    assert!(seat.category.affords(Action::Sit) && seat.category != Category::KidsBed, "{seat:?}");
+    assert!(beyond_real(seat.category, 2, seat.size[2]) <= REAL_SIZE_MARGIN + 1e-9, "{seat:?}");
+}
