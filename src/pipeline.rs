@@ -16,7 +16,7 @@ use crate::generator::{GenError, Generator, GuidanceConfig};
 use crate::physics::Physics;
 use crate::repair::{RepairConfig, RepairReport, repair_scene};
 use crate::scene::{RoomType, Scene};
-use crate::sim::{CheckConfig, CheckReport, SimPhysics, Violation, check_scene, people_in_walls};
+use crate::sim::{CheckConfig, CheckReport, SimPhysics, Violation, ViolationKind, check_scene, people_in_walls};
 use rayon::prelude::*;
 use std::borrow::Borrow;
 use std::sync::Arc;
@@ -80,6 +80,85 @@ pub struct Layouts {
     /// Per input: its people's bones in the walls (under `require_clean`; empty for an input some
     /// layout could make pass).
     pub people_in_walls: Vec<Vec<Violation>>,
+    /// Per input: why its layouts that failed the check failed (under `require_clean`).
+    pub rejected: Vec<Rejections>,
+}
+
+/// One kind of trouble a rejected layout had: the check's kind, the person it concerns (if any)
+/// and what they or the piece met — a category, or `"wall"`.
+#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord)]
+pub struct Cause {
+    /// The check's kind of violation.
+    pub kind: ViolationKind,
+    /// The human's id, for people in pieces and people without support.
+    pub human: Option<String>,
+    /// The category of the piece (the first of two that overlap), or `"wall"`.
+    pub what: Option<String>,
+}
+
+/// Why an input's rejected layouts failed: how many there were, and in how many of them each
+/// [`Cause`] occurs, most frequent first.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Rejections {
+    /// Layouts sampled for the input that failed the check.
+    pub layouts: usize,
+    /// Each cause with the number of rejected layouts it occurs in.
+    pub causes: Vec<(Cause, usize)>,
+}
+
+impl Rejections {
+    /// Counts the causes in `report`, a check of `scene`, once each.
+    fn add(&mut self, scene: &Scene, report: &CheckReport) {
+        self.layouts += 1;
+        let what = |id: &Option<String>| {
+            id.as_ref().map(|id| match scene.objects.iter().find(|o| &o.id == id) {
+                Some(o) => o.category.to_string(),
+                None => "wall".to_string(),
+            })
+        };
+        let mut seen: Vec<Cause> = report
+            .violations
+            .iter()
+            .map(|v| Cause { kind: v.kind, human: v.human.clone(), what: what(&v.object) })
+            .collect();
+        seen.sort();
+        seen.dedup();
+        for cause in seen {
+            match self.causes.iter_mut().find(|(c, _)| *c == cause) {
+                Some((_, n)) => *n += 1,
+                None => self.causes.push((cause, 1)),
+            }
+        }
+        self.causes.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(&b.0)));
+    }
+}
+
+/// Why an input got no clean layout, from its [`Layouts::rejected`] (`None` when none was
+/// rejected): its three most frequent causes, each with the share of rejected layouts it occurs in.
+pub fn rejections_message(r: &Rejections) -> Option<String> {
+    if r.layouts == 0 {
+        return None;
+    }
+    let said: Vec<String> = r
+        .causes
+        .iter()
+        .take(3)
+        .map(|(c, n)| {
+            let who = c.human.as_deref().unwrap_or("?");
+            let what = c.what.as_deref().unwrap_or("?");
+            let text = match c.kind {
+                ViolationKind::Penetration if what == "wall" => format!("{who}'s bones in a wall"),
+                ViolationKind::Penetration => format!("{who}'s bones in a {what}"),
+                ViolationKind::Unsupported => format!("{who} without support"),
+                ViolationKind::ObjectOverlap => format!("a {what} in another piece"),
+                ViolationKind::ObjectWall => format!("a {what} in a wall"),
+                ViolationKind::OutsideFloor => format!("a {what} outside the floor plan"),
+                ViolationKind::Unstable => format!("a {what} unstable"),
+            };
+            format!("{text} ({n} of {})", r.layouts)
+        })
+        .collect();
+    Some(format!("no clean layout in {} samples; most often: {}", r.layouts, said.join(", ")))
 }
 
 /// Why no layout of an input can pass the check, from its [`Layouts::people_in_walls`] (`None` when
@@ -123,7 +202,13 @@ pub fn make_layouts(
     } else {
         vec![Vec::new(); inputs.len()]
     };
-    let mut out = Layouts { kept: vec![Vec::new(); inputs.len()], sampled: 0, accepted: 0, people_in_walls };
+    let mut out = Layouts {
+        kept: vec![Vec::new(); inputs.len()],
+        sampled: 0,
+        accepted: 0,
+        people_in_walls,
+        rejected: vec![Rejections::default(); inputs.len()],
+    };
     for round in 0..rounds {
         // No round makes a layout pass for people in a wall: they get the first round's samples only.
         let hopeless = |i: usize| round > 0 && !out.people_in_walls[i].is_empty();
@@ -156,6 +241,9 @@ pub fn make_layouts(
                 continue;
             }
             let clean = layout.check.as_ref().is_some_and(CheckReport::is_clean);
+            if let Some(report) = layout.check.as_ref().filter(|_| !clean) {
+                out.rejected[i].add(&layout.scene, report);
+            }
             if clean && out.kept[i].len() < opts.samples {
                 out.accepted += 1;
                 out.kept[i].push(layout);
@@ -194,6 +282,7 @@ pub fn make_grouped_layouts<G: Borrow<Generator>>(
         sampled: 0,
         accepted: 0,
         people_in_walls: vec![Vec::new(); inputs.len()],
+        rejected: vec![Rejections::default(); inputs.len()],
     };
     let mut offset = 0;
     for ((_, members), generator) in groups.iter().zip(generators) {
@@ -203,10 +292,67 @@ pub fn make_grouped_layouts<G: Borrow<Generator>>(
         offset += members.len() * opts.samples;
         out.sampled += layouts.sampled;
         out.accepted += layouts.accepted;
-        for ((&i, kept), walls) in members.iter().zip(layouts.kept).zip(layouts.people_in_walls) {
+        for (((&i, kept), walls), rejected) in
+            members.iter().zip(layouts.kept).zip(layouts.people_in_walls).zip(layouts.rejected)
+        {
             out.kept[i] = kept;
             out.people_in_walls[i] = walls;
+            out.rejected[i] = rejected;
         }
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::data::generate_room;
+    use crate::scene::{Category, Object};
+
+    fn violation(kind: ViolationKind, human: Option<&str>, object: &str) -> Violation {
+        Violation {
+            kind,
+            human: human.map(Into::into),
+            bone: None,
+            object: Some(object.into()),
+            other: None,
+            frame: Some(0),
+            frames: None,
+            depth: 0.1,
+        }
+    }
+
+    #[test]
+    fn rejections_count_each_cause_once_per_layout_and_name_the_commonest() {
+        let mut scene = generate_room(RoomType::Bedroom, 3, 0, false).scene;
+        scene.objects = vec![
+            Object::standing("o0", Category::Wardrobe, [1.0, 1.0], [1.0, 0.6, 2.0]),
+            Object::standing("o1", Category::Nightstand, [2.0, 1.0], [0.4, 0.4, 0.5]),
+        ];
+        let mut r = Rejections::default();
+        assert_eq!(rejections_message(&r), None, "nothing rejected, nothing to say");
+        // Two episodes of h1 in the wardrobe in one layout count once; the wall is named as such.
+        let first = CheckReport {
+            violations: vec![
+                violation(ViolationKind::Penetration, Some("h1"), "o0"),
+                violation(ViolationKind::Penetration, Some("h1"), "o0"),
+                violation(ViolationKind::Penetration, Some("h0"), "wall2"),
+            ],
+            frames: 10,
+        };
+        let second =
+            CheckReport { violations: vec![violation(ViolationKind::Penetration, Some("h1"), "o0")], frames: 10 };
+        let third = CheckReport { violations: vec![violation(ViolationKind::ObjectWall, None, "o1")], frames: 10 };
+        for report in [&first, &second, &third] {
+            r.add(&scene, report);
+        }
+        assert_eq!(r.layouts, 3);
+        assert_eq!(r.causes[0].1, 2, "{:?}", r.causes);
+        assert_eq!(r.causes.iter().map(|(_, n)| n).sum::<usize>(), 4);
+        assert_eq!(
+            rejections_message(&r).unwrap(),
+            "no clean layout in 3 samples; most often: h1's bones in a wardrobe (2 of 3), h0's bones in a wall (1 of 3), \
+             a nightstand in a wall (1 of 3)"
+        );
+    }
 }

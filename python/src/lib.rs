@@ -18,7 +18,9 @@ use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 use shade_sim::export::{MjcfOptions, mocap_motion, robot_spot, scene_mjcf};
 use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig};
 use shade_sim::human::people_meeting;
-use shade_sim::pipeline::{LayoutOptions, make_grouped_layouts, people_in_walls_message, room_groups};
+use shade_sim::pipeline::{
+    LayoutOptions, make_grouped_layouts, people_in_walls_message, rejections_message, room_groups,
+};
 use shade_sim::repair::RepairConfig;
 use shade_sim::scene::{RoomType, Scene};
 use shade_sim::sim::{CheckConfig, check_scene};
@@ -273,7 +275,8 @@ fn generate<'py>(
     // As the command line's warnings: an input whose people are in a wall has no clean layout, and
     // people inside each other are the input's doing.
     for (i, (walls, input)) in layouts.people_in_walls.iter().zip(&inputs).enumerate() {
-        if let Some(why) = people_in_walls_message(walls) {
+        let rejected = (require_clean && layouts.kept[i].is_empty()).then(|| rejections_message(&layouts.rejected[i]));
+        if let Some(why) = people_in_walls_message(walls).or(rejected.flatten()) {
             user_warning(py, &format!("input {i}: {why}"))?;
         }
         for m in people_meeting(input, opts.check.tolerance) {

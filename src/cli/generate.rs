@@ -10,7 +10,9 @@ use clap::Args;
 use rayon::prelude::*;
 use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig, shipped_generator};
 use shade_sim::human::{Meeting, people_meeting};
-use shade_sim::pipeline::{LayoutOptions, make_grouped_layouts, people_in_walls_message, room_groups};
+use shade_sim::pipeline::{
+    LayoutOptions, make_grouped_layouts, people_in_walls_message, rejections_message, room_groups,
+};
 use shade_sim::repair::{RepairConfig, RepairTotals};
 use shade_sim::scene::{RoomType, Scene};
 use std::path::{Path, PathBuf};
@@ -242,9 +244,18 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
     let layouts =
         make_grouped_layouts(&inputs, &groups, &generators, &opts, &mut |done| bar.set_position(done as u64))?;
     bar.finish_and_clear();
-    for (file, walls) in files.iter().zip(&layouts.people_in_walls) {
-        if let Some(why) = people_in_walls_message(walls) {
+    // Why an input got no clean layout: its people in a wall, else what its rejected layouts hit.
+    let mut unfurnished = Vec::new();
+    for (((file, walls), rejected), kept) in
+        files.iter().zip(&layouts.people_in_walls).zip(&layouts.rejected).zip(&layouts.kept)
+    {
+        let why = people_in_walls_message(walls)
+            .or_else(|| (args.require_clean && kept.is_empty()).then(|| rejections_message(rejected)).flatten());
+        if let Some(why) = why {
             tracing::warn!("{}: {why}", file.display());
+            if kept.is_empty() {
+                unfurnished.push(serde_json::json!({"input": file.display().to_string(), "why": why}));
+            }
         }
     }
     let (kept, sampled, accepted) = (layouts.kept, layouts.sampled, layouts.accepted);
@@ -277,6 +288,7 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
             "sampled": sampled,
             "acceptance_rate": acceptance,
             "inputs_without_clean_layout": args.require_clean.then_some(empty),
+            "without_clean_layout": args.require_clean.then_some(&unfurnished),
         }))?;
     } else if global.quiet == 0 {
         print_text(&table(&rows))?;
