@@ -10,7 +10,8 @@
 //! runs and Python's lists of inputs give the same layouts.
 //!
 //! This is the only module of the library that joins `generator`, `repair` and `sim`; it adds no
-//! behaviour of its own beyond the resampling loop.
+//! behaviour of its own beyond the resampling loop, and a tally of what each input's rejected
+//! layouts hit ([`Rejections`]), so that an input without a clean layout is told why.
 
 use crate::generator::{GenError, Generator, GuidanceConfig};
 use crate::physics::Physics;
