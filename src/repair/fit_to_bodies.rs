@@ -294,7 +294,7 @@ fn fit_to_bodies(
     for i in entered {
         let boxes = people.held_by(i);
         let under = boxes.iter().map(|(c, _)| c.obox.center.truncate()).sum::<DVec2>() / boxes.len().max(1) as f64;
-        let surface = boxes.iter().map(|(c, _)| c.obox.center.z + c.obox.size.z * 0.5).fold(0.0, f64::max);
+        let surface = boxes.iter().map(|(c, _)| c.obox.z_range().1).fold(0.0, f64::max);
         let held = Held { affords: boxes.iter().map(|(c, _)| c.action).collect(), under, surface };
         fitted += usize::from(fit_piece(scene, i, &held, physics, config));
     }
