@@ -11,40 +11,46 @@ include!(concat!(env!("OUT_DIR"), "/shipped_models.rs"));
 
 /// The shipped model for `room`.
 pub fn shipped_model(room: RoomType) -> Result<Checkpoint, GenError> {
-    let origin = PathBuf::from(format!("models/{}", room.name()));
-    let (_, config, weights) = SHIPPED.iter().find(|(r, _, _)| *r == room.name()).ok_or_else(|| {
+    let origin = origin(room, "");
+    let checkpoint = embedded(SHIPPED, room, "").ok_or_else(|| {
         GenError::checkpoint(&origin, format!("no {room} model was shipped with this build; pass --model DIR"))
-    })?;
-    let meta = parse_meta(config, &origin.join("config.json"))?;
-    if !meta.model.serves(room) {
-        return Err(GenError::checkpoint(&origin, format!("shipped config is for {}", meta.model.room_names())));
+    })??;
+    if !checkpoint.meta.model.serves(room) {
+        let message = format!("shipped config is for {}", checkpoint.meta.model.room_names());
+        return Err(GenError::checkpoint(&origin, message));
     }
-    Checkpoint::from_parts(meta, weights, &origin.join("model.safetensors"))
+    Ok(checkpoint)
 }
 
 /// The shipped low-noise expert for `room` ([`super::ModelConfig::expert_below`]), if one was
 /// shipped (`models/<room>-expert/`).
 pub fn shipped_expert(room: RoomType) -> Result<Option<Checkpoint>, GenError> {
-    let Some((_, config, weights)) = SHIPPED_EXPERTS.iter().find(|(r, _, _)| *r == room.name()) else {
-        return Ok(None);
-    };
-    let origin = expert_origin(room);
-    let meta = parse_meta(config, &origin.join("config.json"))?;
-    Checkpoint::from_parts(meta, weights, &origin.join("model.safetensors")).map(Some)
+    embedded(SHIPPED_EXPERTS, room, "-expert").transpose()
 }
 
 /// The generator of the shipped model for `room`, with its shipped expert if it has one.
 pub fn shipped_generator(room: RoomType) -> Result<Generator, GenError> {
     let generator = Generator::new(shipped_model(room)?);
     match shipped_expert(room)? {
-        Some(expert) => generator.with_expert(expert, &expert_origin(room)),
+        Some(expert) => generator.with_expert(expert, &origin(room, "-expert")),
         None => Ok(generator),
     }
 }
 
-/// Where `room`'s shipped expert came from, as its errors name it.
-fn expert_origin(room: RoomType) -> PathBuf {
-    PathBuf::from(format!("models/{}-expert", room.name()))
+/// `room`'s checkpoint in one of the embedded tables, loaded (`None` where the table has none).
+fn embedded(table: &[(&str, &str, &[u8])], room: RoomType, suffix: &str) -> Option<Result<Checkpoint, GenError>> {
+    let (_, config, weights) = table.iter().find(|(r, _, _)| *r == room.name())?;
+    let origin = origin(room, suffix);
+    Some(
+        parse_meta(config, &origin.join("config.json"))
+            .and_then(|meta| Checkpoint::from_parts(meta, weights, &origin.join("model.safetensors"))),
+    )
+}
+
+/// The folder `room`'s embedded model (`suffix` "") or expert (`"-expert"`) came from, as its
+/// errors name it.
+fn origin(room: RoomType, suffix: &str) -> PathBuf {
+    PathBuf::from(format!("models/{}{suffix}", room.name()))
 }
 
 /// Room types with a shipped model.
