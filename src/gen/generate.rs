@@ -8,7 +8,8 @@ use super::sampler::{Chain, Denoisers, Guidance, Projection, empty_projection_st
 use super::{Checkpoint, Features, GenError, Schedule, tokens};
 use crate::data::Rng;
 use crate::human::Conditions;
-use crate::scene::Scene;
+use crate::scene::{RoomFrame, Scene};
+use std::borrow::Cow;
 
 /// Makes the guidance of one batch from its input scenes (`None`: unguided).
 pub type GuidanceFactory = dyn FnMut(&[&Scene]) -> Option<Box<dyn Guidance>>;
@@ -189,7 +190,8 @@ impl Generator {
     }
 
     /// `samples` layouts per input, in input order then sample order. Deterministic for `seed`.
-    /// Inputs must have the model's room type.
+    /// Inputs must have the model's room type. A floor plan at an angle is sampled in its own frame
+    /// ([`RoomFrame`]) and its pieces turned back; each layout keeps its input's plan and people.
     pub fn generate(&self, inputs: &[Scene], samples: usize, seed: u64) -> Result<Vec<Vec<Scene>>, GenError> {
         self.generate_with(inputs, samples, seed, &mut |_| None, &mut |_| {})
     }
@@ -211,6 +213,15 @@ impl Generator {
                 message: format!("input is a {} but the model generates {}", bad.room_type, model.room_names()),
             });
         }
+        // Sampled in each room's own frame, walls along the axes as in training; pieces turned back.
+        let world = inputs;
+        let frames: Vec<RoomFrame> = world.iter().map(|s| RoomFrame::of(&s.floor_plan)).collect();
+        let framed: Vec<Cow<Scene>> = world
+            .iter()
+            .zip(&frames)
+            .map(|(s, f)| if f.is_identity() { Cow::Borrowed(s) } else { Cow::Owned(f.to_frame(s)) })
+            .collect();
+        let inputs: Vec<&Scene> = framed.iter().map(|s| s.as_ref()).collect();
         let jobs: Vec<(usize, usize)> = (0..inputs.len()).flat_map(|i| (0..samples).map(move |k| (i, k))).collect();
         let features: Vec<(Conditions, Features)> = inputs
             .iter()
@@ -230,7 +241,7 @@ impl Generator {
             let mut rules = Vec::with_capacity(chunk.len());
             for &(i, k) in chunk {
                 let item_seed = Self::item_seed(seed, i, k);
-                match self.drawn_counts(&inputs[i], &features[i].0, item_seed)? {
+                match self.drawn_counts(inputs[i], &features[i].0, item_seed)? {
                     Some(c) => {
                         let mut f = features[i].1.clone();
                         f.set_counts(&c);
@@ -245,7 +256,7 @@ impl Generator {
                 }
                 seeds.push(item_seed);
                 if self.from_input {
-                    let (input, cond) = (&inputs[i], &features[i].0);
+                    let (input, cond) = (inputs[i], &features[i].0);
                     let boxes: Vec<_> = cond.contact_boxes.iter().map(|b| b.obox).collect();
                     start.extend(tokens::encode(input, cond.window.center, &boxes, &meta.bounds, model).0);
                 }
@@ -259,7 +270,7 @@ impl Generator {
                     counts: per_item.map(|per_item| CountTargets { per_item, bounds: meta.bounds.clone() }),
                 },
             };
-            let scenes: Vec<&Scene> = chunk.iter().map(|&(i, _)| &inputs[i]).collect();
+            let scenes: Vec<&Scene> = chunk.iter().map(|&(i, _)| inputs[i]).collect();
             let mut guide = guidance(&scenes);
             let cond = batch.cond(&meta.model)?;
             let denoisers =
@@ -281,6 +292,12 @@ impl Generator {
                 scene.objects = tokens::decode(t, center, scene.floor_plan.height, &meta.bounds, &meta.model);
                 if let Some(g) = guide.as_mut() {
                     g.finish(item, &mut scene);
+                }
+                if !frames[i].is_identity() {
+                    scene = Scene {
+                        objects: scene.objects.iter().map(|o| frames[i].to_world(o)).collect(),
+                        ..world[i].clone()
+                    };
                 }
                 out[i].push(scene);
             }

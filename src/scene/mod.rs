@@ -7,6 +7,7 @@
 mod category;
 mod error;
 mod floor_plan;
+mod frame;
 mod human;
 mod io;
 mod limits;
@@ -19,6 +20,7 @@ mod validate;
 pub use category::{Action, Category, Group, RoomType};
 pub use error::{Problem, ProblemKind, SceneError};
 pub use floor_plan::FloorPlan;
+pub use frame::RoomFrame;
 pub use human::{ActionSpan, Bone, Human, JOINT_NAMES, Skeleton};
 pub use io::write_atomic;
 pub use limits::SceneLimits;
