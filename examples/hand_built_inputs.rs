@@ -5,8 +5,8 @@
 //! side by side and a walker round the corner, a bedroom with a sleeper, a person at a desk and a
 //! walker between them, four diners with a walker behind one row, a reader and a person reaching
 //! up to a wall shelf; a couple on one bed with a walker past its foot, six diners in an L-shaped
-//! room, two walkers crossing a living room, a child on a 30 cm seat, a nap on the sofa; and one
-//! input no layout can make pass (a sitter's feet in the wall).
+//! room, two walkers crossing a living room, a child on a 30 cm seat, a nap on the sofa, a living
+//! room scanned at 25° to the axes; and one input no layout can make pass (a sitter's feet in the wall).
 //!
 //! ```sh
 //! cargo run --release --example hand_built_inputs -- tests/inputs
@@ -67,6 +67,23 @@ fn toucher(id: &str, palm: [f64; 3], yaw_deg: f64) -> Human {
     let mut m = Motion::new(body, FPS);
     m.hold(touch(&body, DVec3::from(palm), yaw_deg.to_radians(), Side::Right), 20, Action::Touch);
     m.into_human(id)
+}
+
+/// A room whose walls run at `deg` to the axes, its first corner at `origin`: a scan's or a capture
+/// space's own coordinates. `at` maps the room's coordinates to the world's.
+struct Turned {
+    deg: f64,
+    origin: [f64; 2],
+}
+
+impl Turned {
+    fn at(&self, p: [f64; 2]) -> [f64; 2] {
+        (DVec2::from(self.origin) + DVec2::from_angle(self.deg.to_radians()).rotate(DVec2::from(p))).to_array()
+    }
+
+    fn plan(&self, w: f64, d: f64) -> FloorPlan {
+        FloorPlan { polygon: rect(w, d).polygon.into_iter().map(|p| self.at(p)).collect(), height: 2.6 }
+    }
 }
 
 fn scene(room_type: RoomType, floor_plan: FloorPlan, humans: Vec<Human>) -> Scene {
@@ -267,6 +284,28 @@ fn main() -> anyhow::Result<()> {
                 ],
             ),
         ),
+        // A living room scanned at 25° to the axes: two sitters side by side against its bottom
+        // wall, a walker across it and a hand on a shelf by its right wall.
+        ("living_at_an_angle", {
+            let room = Turned { deg: 25.0, origin: [2.0, -1.0] };
+            scene(
+                RoomType::Living,
+                room.plan(5.0, 4.2),
+                vec![
+                    sitter("left", room.at([2.1, 0.55]), 0.44, 25.0),
+                    sitter("right", room.at([2.75, 0.55]), 0.44, 25.0),
+                    walker("cross", &[room.at([0.4, 2.4]), room.at([4.6, 3.0])]),
+                    toucher(
+                        "shelf",
+                        {
+                            let [x, y] = room.at([4.65, 1.8]);
+                            [x, y, 1.2]
+                        },
+                        -65.0,
+                    ),
+                ],
+            )
+        }),
         // The person at the desk sits too close to the wall they face: their feet are in it, and
         // no layout can pass the check.
         (
