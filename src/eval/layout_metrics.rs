@@ -6,7 +6,7 @@
 //! - Col_obj: objects whose 3D box intersects another object's / all objects.
 //! - CKL: Σ_c p_c (log(p_c + 1e-6) − log(q_c + 1e-6)), p = reference frequencies, q = generated.
 
-use crate::geom::{Mask, RoomWindow, intersection_volume};
+use crate::geom::{Mask, intersection_volume};
 use crate::human::free_space_mask;
 use crate::scene::Scene;
 use serde::{Deserialize, Serialize};
@@ -30,7 +30,7 @@ impl LayoutCounts {
     /// The counts of one scene.
     pub fn of(scene: &Scene) -> LayoutCounts {
         let polygon = scene.floor_plan.polygon();
-        let window = RoomWindow::around(scene.room_type.window_side(), &polygon);
+        let window = scene.room_window();
         let free = free_space_mask(scene, &window);
         let outside_floor = Mask::of_polygon(&window, &polygon).inverted();
         let mut covered = Mask::new();

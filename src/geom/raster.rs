@@ -28,6 +28,23 @@ impl RoomWindow {
         RoomWindow { center: (min + max) * 0.5, side }
     }
 
+    /// A window `side` metres wide over `floor` that keeps `focus` (the bounding box of what must
+    /// be seen: a scene's people) in view. Along each axis on which the plan fits in the window it
+    /// is [`RoomWindow::around`]'s; along an axis on which the plan is wider, it is centred on the
+    /// focus as far as the plan's bounding box allows (never reaching past it).
+    pub fn around_focus(side: f64, floor: &Polygon, focus: Option<(DVec2, DVec2)>) -> RoomWindow {
+        let mut window = RoomWindow::around(side, floor);
+        let Some((lo, hi)) = focus else { return window };
+        let (min, max) = floor.bounds();
+        let want = (lo + hi) * 0.5;
+        for k in 0..2 {
+            if max[k] - min[k] > side {
+                window.center[k] = want[k].clamp(min[k] + side * 0.5, max[k] - side * 0.5);
+            }
+        }
+        window
+    }
+
     /// Side of one pixel in metres.
     pub fn pixel(&self) -> f64 {
         self.side / RES as f64
@@ -182,6 +199,25 @@ mod tests {
 
     fn window() -> RoomWindow {
         RoomWindow { center: DVec2::ZERO, side: 6.4 }
+    }
+
+    #[test]
+    fn a_window_keeps_its_focus_in_view_only_where_the_plan_is_wider_than_it() {
+        let rect =
+            |w: f64, d: f64| Polygon::new(vec![DVec2::ZERO, DVec2::new(w, 0.0), DVec2::new(w, d), DVec2::new(0.0, d)]);
+        let people = Some((DVec2::new(0.5, 0.5), DVec2::new(2.5, 1.5)));
+        // A 5 × 4 m plan fits a 6.2 m window: centred on the plan, wherever the people are.
+        let fits = RoomWindow::around_focus(6.2, &rect(5.0, 4.0), people);
+        assert_eq!(fits, RoomWindow::around(6.2, &rect(5.0, 4.0)));
+        // A 20 × 4 m hall: along x the window moves to the people (centre 1.5) as far as the plan
+        // allows (3.1, its edge at the wall); along y, where the plan fits, it stays centred.
+        let hall = RoomWindow::around_focus(6.2, &rect(20.0, 4.0), people);
+        assert_eq!(hall.center, DVec2::new(3.1, 2.0));
+        // People in the middle of the hall: the window is centred on them.
+        let middle = Some((DVec2::new(9.0, 1.0), DVec2::new(12.0, 3.0)));
+        assert_eq!(RoomWindow::around_focus(6.2, &rect(20.0, 4.0), middle).center, DVec2::new(10.5, 2.0));
+        // Nobody to keep in view: the plan's centre.
+        assert_eq!(RoomWindow::around_focus(6.2, &rect(20.0, 4.0), None).center, DVec2::new(10.0, 2.0));
     }
 
     #[test]

@@ -73,7 +73,7 @@ impl Conditions {
     /// Conditioning of a (validated) scene.
     pub fn of(scene: &Scene) -> Conditions {
         let polygon = scene.floor_plan.polygon();
-        let window = RoomWindow::around(scene.room_type.window_side(), &polygon);
+        let window = scene.room_window();
         let (nb, ni) = Self::FLOOR_POINTS;
         Conditions {
             window,

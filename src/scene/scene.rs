@@ -26,9 +26,24 @@ pub struct Scene {
 
 impl Scene {
     /// The room window the scene is rasterised in: its room type's side, centred on the floor
-    /// plan's bounding box.
+    /// plan's bounding box — or, along an axis on which the plan is wider than the window (the
+    /// training rooms never are), on the people, as far as the plan allows
+    /// ([`crate::geom::RoomWindow::around_focus`]).
     pub fn room_window(&self) -> crate::geom::RoomWindow {
-        crate::geom::RoomWindow::around(self.room_type.window_side(), &self.floor_plan.polygon())
+        crate::geom::RoomWindow::around_focus(
+            self.room_type.window_side(),
+            &self.floor_plan.polygon(),
+            self.people_bounds(),
+        )
+    }
+
+    /// The horizontal bounding box of every joint of every person in every frame (`None` without
+    /// people).
+    pub fn people_bounds(&self) -> Option<(glam::DVec2, glam::DVec2)> {
+        let mut joints =
+            self.humans.iter().flat_map(|h| h.frames.iter().flatten()).map(|j| glam::DVec2::new(j[0], j[1]));
+        let first = joints.next()?;
+        Some(joints.fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p))))
     }
 
     /// An empty scene of `room_type` over `floor_plan`.

@@ -104,3 +104,27 @@ fn floor_mask_and_points_follow_the_plan() {
     }
     assert_eq!(c.free_space, Mask::new());
 }
+
+#[test]
+fn people_at_the_end_of_a_hall_wider_than_the_window_stay_in_view() {
+    // Two walkers crossing a 5.5 × 4.5 m living room; the same people at the west end of a 20 m
+    // hall, three times the living rooms' 12.4 m window. The window follows them along the hall,
+    // so they are conditioned on as in the small room: every joint in view, the same walked floor.
+    let small = Scene::load(crate::root().join("tests/inputs/living_crossing_walkers.json")).unwrap();
+    let mut hall = small.clone();
+    hall.floor_plan.polygon = vec![[0.0, 0.0], [20.0, 0.0], [20.0, 4.5], [0.0, 4.5]];
+    let (a, b) = (Conditions::of(&small), Conditions::of(&hall));
+    assert_eq!(a.window.center, DVec2::new(2.75, 2.25));
+    assert_eq!(b.window.center, DVec2::new(6.2, 2.25), "as far west as the hall allows");
+    let (lo, hi) = hall.people_bounds().unwrap();
+    for p in [lo, hi] {
+        assert!((p - b.window.center).abs().max_element() < b.window.side / 2.0, "{p} out of view");
+    }
+    let (fa, fb) = (a.free_space.count() as f64, b.free_space.count() as f64);
+    assert!((fa - fb).abs() <= 0.1 * fa, "walked floor {fa} pixels in the room, {fb} in the hall");
+    // (Within a tenth: the pixel grid falls differently.) Centred on the hall (x 3.8 to 16.2), the
+    // window would leave most of the first walk out.
+    let centred = RoomWindow::around(hall.room_type.window_side(), &hall.floor_plan.polygon());
+    let cut = shade_sim::human::free_space_mask(&hall, &centred).count() as f64;
+    assert!(cut < 0.8 * fa, "{cut} of {fa}");
+}
