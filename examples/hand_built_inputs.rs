@@ -6,7 +6,8 @@
 //! walker between them, four diners with a walker behind one row, a reader and a person reaching
 //! up to a wall shelf; a couple on one bed with a walker past its foot, six diners in an L-shaped
 //! room, two walkers crossing a living room, a child on a 30 cm seat, a nap on the sofa, a living
-//! room scanned at 25° to the axes; and one input no layout can make pass (a sitter's feet in the wall).
+//! room scanned at 25° to the axes, people sitting and lying on the floor; and one input no
+//! layout can make pass (a sitter's feet in the wall).
 //!
 //! ```sh
 //! cargo run --release --example hand_built_inputs -- tests/inputs
@@ -306,6 +307,21 @@ fn main() -> anyhow::Result<()> {
                 ],
             )
         }),
+        // People on the floor: a child sitting on it, knees up, and a person lying on it by the
+        // window wall, neither held by furniture; a walker between them and a reader on a seat.
+        (
+            "people_on_the_floor",
+            scene(
+                RoomType::Living,
+                rect(5.0, 4.2),
+                vec![
+                    sitter_of("child", 1.2, [1.3, 3.2], 0.0, 180.0),
+                    lier("floor", [3.2, 0.6], 0.0, 90.0),
+                    walker("cross", &[[0.4, 1.9], [4.6, 2.1]]),
+                    sitter("reader", [4.3, 3.5], 0.44, 180.0),
+                ],
+            ),
+        ),
         // The person at the desk sits too close to the wall they face: their feet are in it, and
         // no layout can pass the check.
         (

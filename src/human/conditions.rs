@@ -2,8 +2,10 @@
 //! and floor-plan points.
 //!
 //! - Free space: every frame labelled walk or stand draws both feet (the ankle–toe capsule's
-//!   shadow) into a 256² mask over the room window. Unlabelled frames are ignored.
-//! - Contact boxes: one oriented box per contact span, yawed like the body (from the hip line).
+//!   shadow) into a 256² mask over the room window, and a body sitting or lying on the floor its
+//!   every bone. Unlabelled frames are ignored.
+//! - Contact boxes: one oriented box per contact span, yawed like the body (from the hip line),
+//!   except for a sitting or lying body that rests on the floor ([`FLOOR_REST`]): no piece holds it.
 //!   For sit and lie the box is the *support volume*: the footprint of the resting parts (pelvis and
 //!   thighs; the whole body) and the 10 cm just below their lowest surface, where a seat or mattress
 //!   must be. For touch it is a 12 cm cube just past the palm along the forearm: the volume the
@@ -21,6 +23,10 @@ use serde::{Deserialize, Serialize};
 
 /// Depth of the support volume under a sitting or lying body (m).
 pub const SUPPORT_DEPTH: f64 = 0.10;
+/// A sitting or lying body whose resting parts are at most this high (m) rests on the floor: the
+/// floor holds it, so its span gets no contact box and needs no piece. The same height within
+/// which `check` counts a resting body as held (`CheckConfig::support_distance`).
+pub const FLOOR_REST: f64 = 0.05;
 /// Side of the cube around a touching palm (m).
 pub const TOUCH_SIDE: f64 = 0.12;
 /// Palm distance past the wrist as a fraction of the forearm (0.054 H / 0.146 H).
@@ -92,7 +98,8 @@ impl Conditions {
     }
 }
 
-/// The feet of all walking and standing frames of all humans.
+/// The feet of all walking and standing frames of all humans, and the whole body of one resting
+/// on the floor.
 pub fn free_space_mask(scene: &Scene, window: &RoomWindow) -> Mask {
     let mut mask = Mask::new();
     for human in &scene.humans {
@@ -101,6 +108,13 @@ pub fn free_space_mask(scene: &Scene, window: &RoomWindow) -> Mask {
             for &(ankle, toe, radius) in &feet {
                 let (a, t) = (human.joint_at(f, ankle).truncate(), human.joint_at(f, toe).truncate());
                 mask.fill_capsule(window, a, t, radius);
+            }
+        }
+        let resting = |span: &&ActionSpan| contact_volume(human, span).is_some_and(|v| rests_on_floor(span, &v));
+        for f in human.contact_spans().filter(resting).flat_map(span_frames) {
+            for bone in &human.skeleton.bones {
+                let (a, b) = (human.joint_at(f, bone.a).truncate(), human.joint_at(f, bone.b).truncate());
+                mask.fill_capsule(window, a, b, bone.radius);
             }
         }
     }
@@ -145,6 +159,19 @@ pub fn body_yaw(human: &Human, f: usize) -> f64 {
 }
 
 fn contact_box(human: &Human, span: &ActionSpan) -> Option<ContactBox> {
+    let obox = contact_volume(human, span)?;
+    let frames = [span.start, span.end];
+    (!rests_on_floor(span, &obox)).then(|| ContactBox { human: human.id.clone(), action: span.action, frames, obox })
+}
+
+/// Whether a span's body rests on the floor: sitting or lying with its support volume's top at
+/// most [`FLOOR_REST`] high.
+fn rests_on_floor(span: &ActionSpan, volume: &OBox) -> bool {
+    matches!(span.action, Action::Sit | Action::Lie) && volume.z_range().1 <= FLOOR_REST
+}
+
+/// The volume a span's contact needs filled: under a sitting or lying body, or past a palm.
+fn contact_volume(human: &Human, span: &ActionSpan) -> Option<OBox> {
     let s = &human.skeleton;
     let yaw = body_yaw(human, (span.start + span.end) / 2);
     let obox = match span.action {
@@ -185,7 +212,7 @@ fn contact_box(human: &Human, span: &ActionSpan) -> Option<ContactBox> {
         }
         Action::Walk | Action::Stand => return None,
     };
-    Some(ContactBox { human: human.id.clone(), action: span.action, frames: [span.start, span.end], obox })
+    Some(obox)
 }
 
 /// Fraction of the thigh (hip → knee) that rests on a seat.

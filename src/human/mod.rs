@@ -13,7 +13,7 @@ mod skeleton;
 mod surface;
 
 pub use conditions::{
-    Conditions, ContactBox, FloorPoint, SUPPORT_DEPTH, TOUCH_SIDE, body_yaw, contact_boxes, floor_points,
+    Conditions, ContactBox, FLOOR_REST, FloorPoint, SUPPORT_DEPTH, TOUCH_SIDE, body_yaw, contact_boxes, floor_points,
     free_space_mask, palm_of,
 };
 pub use gait::Gait;

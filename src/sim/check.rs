@@ -236,7 +236,9 @@ fn gap_below(p: DVec3, z: f64, furniture: &[Solid]) -> f64 {
         .fold(f64::INFINITY, |best, g| if g.abs() < best.abs() { g } else { best })
 }
 
-/// Missing support of sitting and lying humans and far-off touching hands.
+/// Missing support of sitting and lying humans and far-off touching hands. The floor holds a
+/// body whose resting parts are within `limit` of it (a person sitting or lying on the floor),
+/// as a piece's top within `limit` below them does.
 pub(super) fn support(human: &Human, furniture: &[Solid], limit: f64) -> Vec<Violation> {
     let sk = &human.skeleton;
     let ids = |names: &[&str]| names.iter().filter_map(|n| sk.joint(n)).collect::<Vec<_>>();
@@ -244,16 +246,17 @@ pub(super) fn support(human: &Human, furniture: &[Solid], limit: f64) -> Vec<Vio
     for span in human.contact_spans() {
         let mut worst: Option<(usize, f64, &str)> = None;
         for f in span.start..span.end {
+            let on_floor = |z: f64| if z <= limit { 0.0 } else { f64::INFINITY };
             let (part, gap) = match span.action {
                 Action::Sit => {
                     let (p, z) = lowest_under(human, f, &ids(&["pelvis", "left_hip", "right_hip"]));
                     let pelvis = sk.joint("pelvis").map_or(p, |j| human.joint_at(f, j));
-                    ("pelvis", gap_below(pelvis, z, furniture))
+                    ("pelvis", gap_below(pelvis, z, furniture).min(on_floor(z)))
                 }
                 Action::Lie => {
                     let (p, z) = lowest_under(human, f, &ids(&["pelvis", "spine", "chest"]));
                     let chest = sk.joint("spine").map_or(p, |j| human.joint_at(f, j));
-                    ("torso", gap_below(chest, z, furniture))
+                    ("torso", gap_below(chest, z, furniture).min(on_floor(z)))
                 }
                 Action::Touch => ("palm", palm_distance(human, f, furniture)),
                 Action::Walk | Action::Stand => continue,

@@ -128,3 +128,28 @@ fn people_at_the_end_of_a_hall_wider_than_the_window_stay_in_view() {
     let cut = shade_sim::human::free_space_mask(&hall, &centred).count() as f64;
     assert!(cut < 0.8 * fa, "{cut} of {fa}");
 }
+
+#[test]
+fn a_body_resting_on_the_floor_needs_no_piece_and_keeps_its_floor_free() {
+    let body = Body::default();
+    let lying = |surface: f64| {
+        let mut scene = room();
+        scene.humans.push(one(shade_sim::human::lie(&body, DVec2::new(2.5, 2.0), surface, 1.2), Action::Lie, "h0"));
+        Conditions::of(&scene)
+    };
+    // On a 42 cm sofa: a support volume under the body, and no free floor (nobody walks).
+    let sofa = lying(0.42);
+    assert_eq!(sofa.contact_boxes.len(), 1);
+    assert_eq!(sofa.free_space.count(), 0);
+    // On the floor: no box, and the floor under the whole body is kept free, about its shadow's
+    // area (a 1.7 m body: 0.3–0.6 m² at 2.4 cm pixels).
+    let floor = lying(0.0);
+    assert!(floor.contact_boxes.is_empty());
+    let area = floor.free_space.count() as f64 * floor.window.pixel_area();
+    assert!((0.3..0.6).contains(&area), "{area} m²");
+    // Sitting on the floor with the knees up: the same.
+    let mut scene = room();
+    scene.humans.push(one(sit(&body, DVec2::new(2.5, 2.0), 0.0, 0.0), Action::Sit, "h0"));
+    let c = Conditions::of(&scene);
+    assert!(c.contact_boxes.is_empty() && c.free_space.count() > 0);
+}

@@ -3,7 +3,7 @@
 use glam::DVec2;
 use shade_sim::data::{Rng, contact_pose, layout::Placed};
 use shade_sim::geom::Polyline;
-use shade_sim::human::{Body, Motion, sit};
+use shade_sim::human::{Body, Motion, lie, sit};
 use shade_sim::scene::{Action, Category, FloorPlan, Object, RoomType, Scene};
 use shade_sim::sim::{CheckConfig, ViolationKind, check_scene};
 
@@ -74,6 +74,26 @@ fn sitting_on_air_is_unsupported_and_on_a_chair_is_clean() {
     let h = sitter_on(&chair.objects[0], "h0");
     chair.humans.push(h);
     assert_eq!(kinds(&chair), vec![], "{:?}", check_scene(&chair, &CheckConfig::default()).violations);
+}
+
+#[test]
+fn the_floor_holds_a_person_sitting_or_lying_on_it_and_a_few_centimetres_above_it_does_not() {
+    let hold = |pose, action| {
+        let mut s = room();
+        let mut m = Motion::new(Body::default(), 30.0);
+        m.hold(pose, 10, action);
+        s.humans.push(m.into_human("h0"));
+        kinds(&s)
+    };
+    let body = Body::default();
+    let at = DVec2::new(2.5, 2.0);
+    // On the floor: held, as on a piece; 8 cm up (past the check's 5 cm): on air.
+    assert_eq!(hold(lie(&body, at, 0.0, 0.0), Action::Lie), vec![]);
+    assert_eq!(hold(lie(&body, at, 0.08, 0.0), Action::Lie), vec![ViolationKind::Unsupported]);
+    assert_eq!(hold(sit(&body, at, 0.0, 0.0), Action::Sit), vec![]);
+    assert_eq!(hold(sit(&body, at, 0.08, 0.0), Action::Sit), vec![ViolationKind::Unsupported]);
+    // The conditioning calls a body resting on the floor what the check does.
+    assert_eq!(shade_sim::human::FLOOR_REST, CheckConfig::default().support_distance);
 }
 
 #[test]
