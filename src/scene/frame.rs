@@ -38,8 +38,7 @@ impl RoomFrame {
             cos += d.length() * c;
         }
         let angle = if sin.abs() + cos.abs() > 0.0 { sin.atan2(cos) / 4.0 } else { 0.0 };
-        let lo = points.iter().fold(DVec2::splat(f64::INFINITY), |m, &p| m.min(p));
-        let hi = points.iter().fold(DVec2::splat(f64::NEG_INFINITY), |m, &p| m.max(p));
+        let (lo, hi) = plan.polygon().bounds();
         let pivot = if points.is_empty() { DVec2::ZERO } else { (lo + hi) * 0.5 };
         if angle.abs() < SQUARE_TOLERANCE { RoomFrame { pivot, angle: 0.0 } } else { RoomFrame { pivot, angle } }
     }
