@@ -14,6 +14,7 @@
 //! layouts hit ([`Rejections`]), so that an input without a clean layout is told why.
 
 use crate::generator::{GenError, Generator, GuidanceConfig};
+use crate::human::ContactBox;
 use crate::physics::Physics;
 use crate::repair::{RepairConfig, RepairReport, repair_scene};
 use crate::scene::{RoomType, Scene};
@@ -160,6 +161,20 @@ pub fn rejections_message(r: &Rejections) -> Option<String> {
         })
         .collect();
     Some(format!("no clean layout in {} samples; most often: {}", r.layouts, said.join(", ")))
+}
+
+/// What the model does not see of an input ([`Generator::unseen_contacts`]): its contact spans
+/// beyond the `seen` the model conditions on, by person and action (`None` when it sees them all).
+pub fn unseen_contacts_message(unseen: &[ContactBox], seen: usize) -> Option<String> {
+    if unseen.is_empty() {
+        return None;
+    }
+    let spans: Vec<String> = unseen.iter().map(|b| format!("{} {}", b.human, b.action)).collect();
+    Some(format!(
+        "{} contact spans beyond the {seen} the model conditions on ({}): their pieces come from guidance and repair alone",
+        unseen.len(),
+        spans.join(", ")
+    ))
 }
 
 /// Why no layout of an input can pass the check, from its [`Layouts::people_in_walls`] (`None` when

@@ -20,6 +20,7 @@ use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig};
 use shade_sim::human::people_meeting;
 use shade_sim::pipeline::{
     LayoutOptions, make_grouped_layouts, people_in_walls_message, rejections_message, room_groups,
+    unseen_contacts_message,
 };
 use shade_sim::repair::RepairConfig;
 use shade_sim::scene::{RoomType, Scene};
@@ -268,6 +269,15 @@ fn generate<'py>(
             return Err(PyValueError::new_err(message));
         }
         generators.push(generator);
+    }
+    // As the command line: more people in contact than the model conditions on, said before sampling.
+    for ((_, members), generator) in groups.iter().zip(&generators) {
+        let seen = generator.checkpoint.meta.model.max_contacts;
+        for &i in members {
+            if let Some(note) = unseen_contacts_message(&generator.unseen_contacts(&inputs[i]), seen) {
+                user_warning(py, &format!("input {i}: {note}"))?;
+            }
+        }
     }
     let opts = LayoutOptions { samples, seed, guidance, repair, require_clean, attempts, ..LayoutOptions::default() };
     let layouts = detached(py, || make_grouped_layouts(&inputs, &groups, &generators, &opts, &mut |_| {}))?

@@ -75,6 +75,23 @@ def test_people_inside_each_other_are_a_warning_in_check_and_generate(root):
         shade_sim.generate(raw, seed=0, repair=False, guidance="none")
 
 
+def test_more_people_in_contact_than_the_model_sees_are_named_in_a_warning(root):
+    import pytest
+
+    raw = shade_sim.load_scene(f"{root}/tests/inputs/dinner_for_three.json").to_dict()
+    # Three diners copied 4.5 m along, three times: twelve sitters (no one meets another), and the
+    # dining model anchors eight.
+    diners = raw["humans"][:3]
+    raw["floor_plan"]["polygon"] = [[0, 0], [18, 0], [18, 3.6], [0, 3.6]]
+    raw["humans"] = [
+        dict(h, id=f"{h['id']}{k}", frames=[[[x + 4.5 * k, y, z] for x, y, z in f] for f in h["frames"]])
+        for k in range(4)
+        for h in diners
+    ]
+    with pytest.warns(UserWarning, match=r"input 0: 4 contact spans beyond the 8 the model conditions on \(head2 sit, "):
+        shade_sim.generate(raw, seed=0, repair=False, guidance="none")
+
+
 def test_check_reports_two_overlapping_pieces(root):
     raw = shade_sim.load_scene(f"{root}/scenes/reference/bedroom_rect.json").to_dict()
     first = raw["objects"][0]

@@ -12,6 +12,7 @@ use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig, shipped_genera
 use shade_sim::human::{Meeting, people_meeting};
 use shade_sim::pipeline::{
     LayoutOptions, make_grouped_layouts, people_in_walls_message, rejections_message, room_groups,
+    unseen_contacts_message,
 };
 use shade_sim::repair::{RepairConfig, RepairTotals};
 use shade_sim::scene::{RoomType, Scene};
@@ -231,6 +232,15 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
                 file.display(),
                 input.room_type
             );
+        }
+    }
+    // More people in contact than the model conditions on: said before sampling.
+    for (g, (_, members)) in groups.iter().enumerate() {
+        let seen = generators[g].checkpoint.meta.model.max_contacts;
+        for &i in members {
+            if let Some(note) = unseen_contacts_message(&generators[g].unseen_contacts(&inputs[i]), seen) {
+                tracing::warn!("{}: {note}", files[i].display());
+            }
         }
     }
     // People inside each other: no layout mends it (`human::people_meeting`); said before sampling.

@@ -7,7 +7,7 @@ use super::dataset::HostBatch;
 use super::sampler::{Chain, Denoisers, Guidance, Projection, empty_projection_steps, sample_from};
 use super::{Checkpoint, Features, GenError, Schedule, tokens};
 use crate::data::Rng;
-use crate::human::Conditions;
+use crate::human::{Conditions, ContactBox};
 use crate::scene::{RoomFrame, Scene};
 use std::borrow::Cow;
 
@@ -187,6 +187,14 @@ impl Generator {
                 message: format!("the model's count prior has no {} room", input.room_type),
             }),
         }
+    }
+
+    /// The contact spans of `scene` the model does not condition on: those beyond its
+    /// `max_contacts` (its contact-anchored slots), in the order conditioning takes them; empty for
+    /// most inputs. Their pieces come from guidance and repair alone.
+    pub fn unseen_contacts(&self, scene: &Scene) -> Vec<ContactBox> {
+        let seen = self.checkpoint.meta.model.max_contacts;
+        Conditions::contact_boxes_of(scene).into_iter().skip(seen).collect()
     }
 
     /// `samples` layouts per input, in input order then sample order. Deterministic for `seed`.

@@ -916,3 +916,35 @@ fn the_shipped_dining_model_samples_with_its_own_geometry_eta() {
     ]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
 }
+
+#[test]
+fn contact_spans_beyond_the_models_slots_are_named_before_sampling() {
+    use shade_sim::human::{Body, Motion, sit};
+    use shade_sim::scene::{Action, FloorPlan};
+    // Ten sitters in a row, five a side of a long table: the dining model anchors eight.
+    let plan = FloorPlan { polygon: vec![[0.0, 0.0], [4.5, 0.0], [4.5, 4.0], [0.0, 4.0]], height: 2.7 };
+    let mut scene = Scene::new(RoomType::Dining, plan);
+    for k in 0..10 {
+        let (x, y, yaw) = (0.9 + 0.65 * (k / 2) as f64, if k % 2 == 0 { 1.3 } else { 2.7 }, (k % 2) as f64 * 180.0);
+        let mut m = Motion::new(Body::default(), 10.0);
+        m.hold(sit(&Body::default(), glam::DVec2::new(x, y), 0.46, yaw.to_radians()), 10, Action::Sit);
+        scene.humans.push(m.into_human(format!("h{k}")));
+    }
+    let dining = Generator::new(shade_sim::generator::shipped_model(RoomType::Dining).unwrap());
+    let unseen = dining.unseen_contacts(&scene);
+    assert_eq!(unseen.iter().map(|b| b.human.as_str()).collect::<Vec<_>>(), ["h8", "h9"]);
+    let note = shade_sim::pipeline::unseen_contacts_message(&unseen, 8).unwrap();
+    assert!(note.starts_with("2 contact spans beyond the 8 the model conditions on (h8 sit, h9 sit)"), "{note}");
+    // generate says so, once, before it samples.
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("ten.json");
+    scene.save(&input).unwrap();
+    let out = dir.path().join("out");
+    let o = shade_sim(&["generate", "--input", input.to_str().unwrap(), "--out", out.to_str().unwrap(), "--no-repair"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(stderr(&o).matches("contact spans beyond the 8").count(), 1, "{}", stderr(&o));
+    // Eight sitters: all seen, nothing said.
+    scene.humans.truncate(8);
+    assert!(dining.unseen_contacts(&scene).is_empty());
+    assert_eq!(shade_sim::pipeline::unseen_contacts_message(&[], 8), None);
+}
