@@ -28,26 +28,42 @@ impl Scene {
     /// The room window the scene is rasterised in: its room type's side, centred on the floor
     /// plan's bounding box — or, along an axis on which the plan is wider than the window (the
     /// training rooms never are), on the people, as far as the plan allows
-    /// ([`crate::geom::RoomWindow::around_focus`]).
+    /// ([`crate::geom::RoomWindow::around_focus`]). Where everyone together spans more than the
+    /// window, the people in contact (sitting, lying, touching) come first: the pieces under them
+    /// are the model's to place, and a walker's path is kept clear by guidance and repair as well.
     pub fn room_window(&self) -> crate::geom::RoomWindow {
-        crate::geom::RoomWindow::around_focus(
-            self.room_type.window_side(),
-            &self.floor_plan.polygon(),
-            self.people_bounds(),
-        )
+        let side = self.room_type.window_side();
+        let everyone = self.people_bounds();
+        let spans_more = everyone.is_some_and(|(lo, hi)| (hi - lo).max_element() > side);
+        let focus = if spans_more { self.contact_bounds().or(everyone) } else { everyone };
+        crate::geom::RoomWindow::around_focus(side, &self.floor_plan.polygon(), focus)
     }
 
     /// The horizontal bounding box of every joint of every person in every frame (`None` without
     /// people).
     pub fn people_bounds(&self) -> Option<(glam::DVec2, glam::DVec2)> {
-        let mut joints =
-            self.humans.iter().flat_map(|h| h.frames.iter().flatten()).map(|j| glam::DVec2::new(j[0], j[1]));
-        let first = joints.next()?;
-        Some(joints.fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p))))
+        bounds(self.humans.iter().flat_map(|h| h.frames.iter().flatten()))
+    }
+
+    /// The horizontal bounding box of every joint in every frame of a contact span (sit, lie,
+    /// touch; `None` without one).
+    pub fn contact_bounds(&self) -> Option<(glam::DVec2, glam::DVec2)> {
+        let spans = self
+            .humans
+            .iter()
+            .flat_map(|h| h.contact_spans().map(move |s| h.frames.get(s.start..s.end).unwrap_or(&[])));
+        bounds(spans.flat_map(|frames| frames.iter().flatten()))
     }
 
     /// An empty scene of `room_type` over `floor_plan`.
     pub fn new(room_type: RoomType, floor_plan: FloorPlan) -> Scene {
         Scene { format: FORMAT.to_string(), room_type, floor_plan, objects: Vec::new(), humans: Vec::new() }
     }
+}
+
+/// The horizontal bounding box of `joints` (`None` for none).
+fn bounds<'a>(joints: impl Iterator<Item = &'a [f64; 3]>) -> Option<(glam::DVec2, glam::DVec2)> {
+    let mut points = joints.map(|j| glam::DVec2::new(j[0], j[1]));
+    let first = points.next()?;
+    Some(points.fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p))))
 }

@@ -122,6 +122,14 @@ fn people_at_the_end_of_a_hall_wider_than_the_window_stay_in_view() {
     }
     let (fa, fb) = (a.free_space.count() as f64, b.free_space.count() as f64);
     assert!((fa - fb).abs() <= 0.1 * fa, "walked floor {fa} pixels in the room, {fb} in the hall");
+    // A walker down the whole hall: everyone spans more than the window, and the people in
+    // contact (the reader in the west corner, the hand by the east wall of the small room) keep it.
+    let mut walked = hall.clone();
+    let mut m = Motion::new(Body::default(), 10.0);
+    m.walk(&shade_sim::geom::Polyline::new(vec![DVec2::new(0.5, 4.0), DVec2::new(19.5, 4.0)]).unwrap(), 1.2);
+    walked.humans.push(m.into_human("long"));
+    assert_eq!(walked.room_window().center, DVec2::new(6.2, 2.25));
+    assert_eq!(walked.room_window(), b.window);
     // (Within a tenth: the pixel grid falls differently.) Centred on the hall (x 3.8 to 16.2), the
     // window would leave most of the first walk out.
     let centred = RoomWindow::around(hall.room_type.window_side(), &hall.floor_plan.polygon());
