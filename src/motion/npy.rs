@@ -5,10 +5,12 @@
 //! In an `.npz`, the positions are the array `joints` (or `positions`, `joint_positions`), the
 //! names the string array `names` (or `joint_names`), the frame rate the scalar `fps` (or AMASS's
 //! `mocap_framerate`). Without names, an array of 22, 24, 52 or 55 joints is taken to be in SMPL /
-//! SMPL-H / SMPL-X order, whose first 22 joints are the body's. Units and axes are kept as in the
+//! SMPL-H / SMPL-X order, whose first 22 joints are the body's, and one of 19 in ours
+//! (`JOINT_NAMES`: a shade-scene human's `frames` saved as an array). Units and axes are kept as in the
 //! file (`rig` detects and converts them).
 
 use super::clip::{Clip, MAX_JOINTS, MAX_POSITIONS};
+use crate::scene::JOINT_NAMES;
 use glam::DVec3;
 use npyz::NpyFile;
 use npyz::npz::NpzArchive;
@@ -204,10 +206,11 @@ fn clip(joints: usize, flat: Vec<DVec3>, names: Option<Vec<String>>, fps: f64) -
         None if SMPL_SIZES.contains(&joints) => {
             (0..joints).map(|i| SMPL_BODY_JOINTS.get(i).map_or(format!("joint_{i}"), |s| s.to_string())).collect()
         }
+        None if joints == JOINT_NAMES.len() => JOINT_NAMES.map(str::to_string).to_vec(),
         None => {
             return Err(format!(
                 "unknown rig: {joints} joints without names (name them in an .npz array `names`, or use SMPL's order \
-                 of 22, 24, 52 or 55 joints)"
+                 of 22, 24, 52 or 55 joints, or ours of 19)"
             ));
         }
     };

@@ -10,7 +10,9 @@
 //! - **BioVision-style** — mocapbank, the BVH samples of many tools: `Hips`, `LeftHip` /
 //!   `LeftKnee` / `LeftAnkle` / `LeftToe(s)`, `LeftShoulder` / `LeftElbow` / `LeftWrist`, `Neck`,
 //!   `Head`;
-//! - **SMPL / SMPL-H / SMPL-X** joint names (`pelvis`, `left_hip`, …, `left_foot` for the toe).
+//! - **SMPL / SMPL-H / SMPL-X** joint names (`pelvis`, `left_hip`, …, `left_foot` for the toe);
+//! - **ours** — the 19 names of `JOINT_NAMES` (a shade-scene human's joints saved as an array):
+//!   taken one for one, nothing derived.
 //!
 //! Spine and chest are points on the trunk (the chain of joints from the pelvis to the neck) at
 //! our body's proportions of its length, so rigs with one to four spine joints retarget alike. The
@@ -24,14 +26,14 @@
 //! clavicle). Left is the side the feet point left of.
 
 use super::clip::Clip;
-use crate::human::Joint;
+use crate::human::{JOINT_NAMES, Joint};
 use glam::DVec3;
 
 /// Our joints' positions at every frame, in the file's units and axes, and how they were found.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Retargeted {
-    /// The rig recognised: `"MotionBuilder-style"`, `"BioVision-style"`, `"SMPL"` or
-    /// `"topology"`.
+    /// The rig recognised: `"shade-sim"` (ours), `"MotionBuilder-style"`, `"BioVision-style"`,
+    /// `"SMPL"` or `"topology"`.
     pub rig: &'static str,
     /// One entry per frame, in `JOINT_NAMES` order.
     pub frames: Vec<[DVec3; 19]>,
@@ -115,13 +117,17 @@ fn normalise(name: &str) -> String {
 /// Our 19 joints from `clip`, whose up axis is `up` (for the topology fallback).
 pub fn retarget(clip: &Clip, up: DVec3) -> Result<Retargeted, String> {
     let names: Vec<String> = clip.names.iter().map(|n| normalise(n)).collect();
+    if let Some(ours) = our_joints(&names) {
+        let frames = clip.frames.iter().map(|f| ours.map(|j| f[j])).collect();
+        return Ok(Retargeted { rig: "shade-sim", frames });
+    }
     let hierarchy = clip.parents.iter().any(Option::is_some);
     let named = RIGS.iter().find_map(|rig| by_names(rig, &names, clip, hierarchy).map(|m| (rig.name, m)));
     let (rig, mapping) = match named {
         Some(found) => found,
         None if hierarchy => ("topology", by_topology(clip, up)?),
         None => {
-            let known: Vec<&str> = RIGS.iter().map(|r| r.name).collect();
+            let known: Vec<&str> = std::iter::once("ours").chain(RIGS.iter().map(|r| r.name)).collect();
             return Err(format!(
                 "unknown rig: the joint names match none of {} and the file has no hierarchy to go by",
                 known.join(", ")
@@ -129,6 +135,15 @@ pub fn retarget(clip: &Clip, up: DVec3) -> Result<Retargeted, String> {
         }
     };
     Ok(Retargeted { rig, frames: clip.frames.iter().map(|f| pose(&mapping, f)).collect() })
+}
+
+/// Where each of our 19 joints is among `names` (normalised), if all of them are there.
+fn our_joints(names: &[String]) -> Option<[usize; 19]> {
+    let mut at = [0; 19];
+    for (slot, ours) in at.iter_mut().zip(JOINT_NAMES) {
+        *slot = names.iter().position(|n| *n == normalise(ours))?;
+    }
+    Some(at)
 }
 
 fn by_names(rig: &NamedRig, names: &[String], clip: &Clip, hierarchy: bool) -> Option<Mapping> {

@@ -234,6 +234,31 @@ fn our_own_motion_as_a_smpl_array_in_centimetres_y_up_comes_back_as_it_was() {
 }
 
 #[test]
+fn a_scene_human_saved_as_an_array_of_our_joints_comes_back_joint_for_joint() {
+    // What a user has after `np.savez(f, joints=human["frames"], names=skeleton["joints"])`: our 19
+    // joints by name, metres, z-up. Every joint comes back, none derived; unnamed, 19 joints are ours.
+    let original = own_motion();
+    let frames = body_frames(&original).unwrap();
+    let ours: Vec<f32> = frames.iter().flatten().flat_map(|p| p.to_array()).map(|v| v as f32).collect();
+    let dir = tempfile::tempdir().unwrap();
+    let named = dir.path().join("ours.npz");
+    write_npz(&named, &ours, frames.len(), 19, Some(&shade_sim::scene::JOINT_NAMES), Some(30.0));
+    let opts = ImportOptions::new(RoomType::Bedroom, floor(5.0, 4.0));
+    let (human, report) = import_one(&named, &opts);
+    assert_eq!((report.rig, report.scale, report.y_up), ("shade-sim", 1.0, false));
+    let back = body_frames(&human).unwrap();
+    assert_eq!(back.len(), frames.len());
+    for (f, (a, b)) in frames.iter().zip(&back).enumerate() {
+        for j in 0..19 {
+            assert!(a[j].distance(b[j]) < 5e-4, "frame {f} joint {j}: {} vs {}", a[j], b[j]);
+        }
+    }
+    let unnamed = dir.path().join("ours.npy");
+    write_npy(&unnamed, &ours, frames.len(), 19);
+    assert_eq!(import_one(&unnamed, &opts).0, human);
+}
+
+#[test]
 fn given_spans_override_the_labels_and_resampling_keeps_the_duration() {
     let mut opts = placed_in_a_big_room();
     opts.fps = 10.0;
