@@ -6,8 +6,10 @@
 //! walker between them, four diners with a walker behind one row, a reader and a person reaching
 //! up to a wall shelf; a couple on one bed with a walker past its foot, six diners in an L-shaped
 //! room, two walkers crossing a living room, a child on a 30 cm seat, a nap on the sofa, a living
-//! room scanned at 25° to the axes, people sitting and lying on the floor; and one input no
-//! layout can make pass (a sitter's feet in the wall).
+//! room scanned at 25° to the axes, people sitting and lying on the floor; people who walk in, sit
+//! down, get up and walk out again (on a sofa, and in a reading chair turned into a corner), their
+//! actions labelled from the motion as `import-motion` labels a capture; and one input no layout
+//! can make pass (a sitter's feet in the wall).
 //!
 //! ```sh
 //! cargo run --release --example hand_built_inputs -- tests/inputs
@@ -17,7 +19,8 @@
 
 use glam::{DVec2, DVec3};
 use shade_sim::geom::Polyline;
-use shade_sim::human::{Body, Motion, Side, lie, sit, stand, touch};
+use shade_sim::human::{Body, Joint, Motion, Side, lie, sit, stand, touch};
+use shade_sim::motion::{LabelConfig, body_frames, label_frames, labels::runs};
 use shade_sim::scene::{Action, FloorPlan, Human, RoomType, Scene};
 use std::path::PathBuf;
 
@@ -68,6 +71,33 @@ fn toucher(id: &str, palm: [f64; 3], yaw_deg: f64) -> Human {
     let mut m = Motion::new(body, FPS);
     m.hold(touch(&body, DVec3::from(palm), yaw_deg.to_radians(), Side::Right), 20, Action::Touch);
     m.into_human(id)
+}
+
+/// A person who walks in from `door`, sits down on a seat of height `seat` at `at` facing
+/// `yaw_deg`, stays, gets up and walks back to the door. They walk up to the seat from the front,
+/// stop with their feet a little ahead of where they rest seated, turn, sit down and later stand
+/// up there. The actions are labelled from the motion, frame by frame, as `import-motion` labels
+/// a capture: the turns and the sitting down are walking or standing, not sitting.
+fn visitor(id: &str, door: [f64; 2], at: [f64; 2], seat: f64, yaw_deg: f64) -> Human {
+    let body = Body::new(1.74);
+    let yaw = yaw_deg.to_radians();
+    let seated = sit(&body, DVec2::from(at), seat, yaw);
+    let facing = DVec2::new(-yaw.sin(), yaw.cos());
+    let feet = (seated.get(Joint::LeftAnkle) + seated.get(Joint::RightAnkle)).truncate() * 0.5;
+    let spot = feet + facing * 0.08;
+    let (door, front) = (DVec2::from(door), spot + facing * 0.8);
+    let standing = stand(&body, spot, yaw);
+    let mut m = Motion::new(body, FPS);
+    m.walk(&Polyline::new(vec![door, front, spot]).expect("three points"), 1.0);
+    m.blend_to(&standing, 6).hold(standing, 4, Action::Stand).blend_to(&seated, 10);
+    m.hold(seated, 40, Action::Sit).blend_to(&standing, 10).hold(standing, 4, Action::Stand);
+    let away = stand(&body, spot, (-(door - spot).x).atan2((door - spot).y));
+    m.blend_to(&away, 6);
+    m.walk(&Polyline::new(vec![spot, front, door]).expect("three points"), 1.0);
+    let mut human = m.into_human(id);
+    let frames = body_frames(&human).expect("our own skeleton");
+    human.actions = runs(&label_frames(&frames, FPS, body.stature, &LabelConfig::default()));
+    human
 }
 
 /// A room whose walls run at `deg` to the axes, its first corner at `origin`: a scan's or a capture
@@ -320,6 +350,28 @@ fn main() -> anyhow::Result<()> {
                     walker("cross", &[[0.4, 1.9], [4.6, 2.1]]),
                     sitter("reader", [4.3, 3.5], 0.44, 180.0),
                 ],
+            ),
+        ),
+        // Someone walks in, sits down in the middle of the sofa against the back wall, gets up and
+        // walks out; another reads in an armchair by the side wall.
+        (
+            "sofa_visit",
+            scene(
+                RoomType::Living,
+                rect(5.0, 4.0),
+                vec![
+                    visitor("guest", [4.4, 0.5], [2.5, 3.45], 0.42, 180.0),
+                    sitter("reader", [0.55, 1.6], 0.44, -90.0),
+                ],
+            ),
+        ),
+        // A reading chair turned into a bedroom's corner: walked to, sat in, left again; a sleeper.
+        (
+            "reading_chair_visit",
+            scene(
+                RoomType::Bedroom,
+                rect(3.6, 3.4),
+                vec![visitor("reader", [0.5, 0.5], [3.0, 2.8], 0.44, 135.0), lier("sleeper", [0.95, 2.2], 0.48, 0.0)],
             ),
         ),
         // The person at the desk sits too close to the wall they face: their feet are in it, and
