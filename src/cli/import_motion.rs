@@ -7,7 +7,7 @@ use anyhow::{Context, bail};
 use clap::{Args, ValueEnum};
 use glam::DVec2;
 use shade_sim::human::people_meeting;
-use shade_sim::motion::{ImportOptions, MotionError, Placement, Units, UpAxis, import_motion};
+use shade_sim::motion::{ImportOptions, MotionError, Placement, Trim, Units, UpAxis, import_motion};
 use shade_sim::scene::{ActionSpan, FloorPlan, Scene};
 use shade_sim::sim::{CheckConfig, people_in_walls};
 use std::path::{Path, PathBuf};
@@ -54,6 +54,11 @@ pub struct ImportMotionArgs {
     /// override the automatic labels; once per motion, in order.
     #[arg(long)]
     pub actions: Vec<PathBuf>,
+    /// Keep only the file's seconds FROM to TO (`FROM:` to its end); once per motion, in order.
+    /// The written clip starts at FROM: its frames and times, in messages and --actions, count
+    /// from there.
+    #[arg(long, value_name = "FROM:TO")]
+    pub trim: Vec<String>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -96,14 +101,25 @@ fn placement(arg: &str) -> anyhow::Result<Placement> {
     }
 }
 
+fn trim(arg: &str) -> anyhow::Result<Trim> {
+    let number = |s: &str| s.trim().parse::<f64>().ok().filter(|v| v.is_finite());
+    match arg.split_once(':') {
+        Some((from, to)) if number(from).is_some() && (to.trim().is_empty() || number(to).is_some()) => {
+            Ok(Trim { from: number(from).unwrap_or_default(), to: number(to) })
+        }
+        _ => bail!("--trim {arg}: expected FROM:TO or FROM: (seconds)"),
+    }
+}
+
 fn spans(file: &Path) -> anyhow::Result<Vec<ActionSpan>> {
     let text = std::fs::read_to_string(file).with_context(|| file.display().to_string())?;
     serde_json::from_str(&text).with_context(|| format!("{}: not a list of action spans", file.display()))
 }
 
 pub fn run(args: &ImportMotionArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
-    if args.place.len() > args.motions.len() || args.actions.len() > args.motions.len() {
-        bail!("--place and --actions are given once per motion file, at most {}", args.motions.len());
+    if [&args.place, &args.trim].iter().any(|v| v.len() > args.motions.len()) || args.actions.len() > args.motions.len()
+    {
+        bail!("--place, --trim and --actions are given once per motion file, at most {}", args.motions.len());
     }
     for (name, v) in [("--fps", args.fps), ("--source-fps", args.source_fps)] {
         if !(v.is_finite() && (1.0..=1000.0).contains(&v)) {
@@ -116,6 +132,7 @@ pub fn run(args: &ImportMotionArgs, global: &GlobalArgs) -> anyhow::Result<ExitS
     let mut opts = ImportOptions::new(args.room.into(), floor_of(&args.floor, args.height)?);
     opts.places = args.place.iter().map(|p| placement(p).map(Some)).collect::<anyhow::Result<_>>()?;
     opts.actions = args.actions.iter().map(|f| spans(f)).collect::<anyhow::Result<_>>()?;
+    opts.trims = args.trim.iter().map(|t| trim(t).map(Some)).collect::<anyhow::Result<_>>()?;
     opts.fps = args.fps;
     opts.source_fps = args.source_fps;
     opts.stature = args.stature;
@@ -202,7 +219,7 @@ fn body_in_a_wall(scene: &Scene, files: &[PathBuf], fps: f64) -> Option<MotionEr
     Some(MotionError::invalid(
         files.get(human).cloned().unwrap_or_default(),
         format!(
-            "frame {frame} ({:.2} s): the {bone} is {:.2} m inside the wall of floor-plan edge {edge}; place the clip with --place",
+            "frame {frame} ({:.2} s): the {bone} is {:.2} m inside the wall of floor-plan edge {edge}; place the clip with --place, or leave the frame out with --trim",
             frame as f64 / fps,
             v.depth
         ),

@@ -3,8 +3,9 @@
 //!
 //! Reading ([`bvh`], [`npy`]) gives joint positions in the file's units and axes; [`rig`] finds
 //! our 19 joints among them; [`import_motion`] then makes the up axis z, the units metres (from the
-//! body's measured height), puts the lowest toe on the floor, places the clip where asked,
-//! resamples it and labels every frame's action ([`labels`]). It does not generate furniture, and
+//! body's measured height), keeps the stretch of time asked for ([`Trim`]), puts the lowest toe
+//! on the floor, places the clip where asked, resamples it and labels every frame's action
+//! ([`labels`]). It does not generate furniture, and
 //! it does not smooth or fix the motion beyond that.
 
 pub mod bvh;
@@ -88,6 +89,39 @@ pub struct Placement {
     pub yaw_degrees: f64,
 }
 
+/// The stretch of a clip kept: from `from` seconds of the file to `to` (or its end). A capture's
+/// calibration pose at the start, or a walk out of the room at the end, is left out this way.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Trim {
+    /// Seconds of the file where the written clip starts (its frame 0).
+    pub from: f64,
+    /// Seconds of the file where it ends; `None`: the file's end.
+    pub to: Option<f64>,
+}
+
+impl Trim {
+    /// The frames of a clip at `fps` with `frames` frames that lie in `[from, to]` seconds, or why
+    /// there are none.
+    pub fn frames(&self, frames: usize, fps: f64) -> Result<std::ops::Range<usize>, String> {
+        let end = (frames.max(1) - 1) as f64 / fps;
+        let to = self.to.unwrap_or(end);
+        let shown = || match self.to {
+            Some(to) => format!("--trim {}:{}", self.from, to),
+            None => format!("--trim {}:", self.from),
+        };
+        if !(self.from.is_finite() && to.is_finite() && self.from >= 0.0 && self.from < to) {
+            return Err(format!("{}: expected FROM:TO seconds with 0 ≤ FROM < TO", shown()));
+        }
+        if self.from > end {
+            return Err(format!("{}: starts after the clip's end ({end:.2} s)", shown()));
+        }
+        // A hundredth of a frame of slack, as in resampling: frame times written to 6 digits.
+        let first = (self.from * fps - 0.01).ceil().max(0.0) as usize;
+        let last = ((to * fps + 0.01).floor() as usize).min(frames - 1);
+        Ok(first..last + 1)
+    }
+}
+
 /// How to import.
 #[derive(Debug, Clone)]
 pub struct ImportOptions {
@@ -112,6 +146,9 @@ pub struct ImportOptions {
     pub labels: LabelConfig,
     /// Per clip, spans (in the written frames) whose action is given rather than labelled.
     pub actions: Vec<Vec<ActionSpan>>,
+    /// Per clip, in file order, the stretch kept (`None`, or a list shorter than the files: all of
+    /// it). Frames and times of the written clip count from its start.
+    pub trims: Vec<Option<Trim>>,
 }
 
 impl ImportOptions {
@@ -128,6 +165,7 @@ impl ImportOptions {
             source_fps: 30.0,
             labels: LabelConfig::default(),
             actions: Vec::new(),
+            trims: Vec::new(),
         }
     }
 }
@@ -145,7 +183,7 @@ pub struct ImportReport {
     pub y_up: bool,
     /// The person's stature (m).
     pub stature: f64,
-    /// Frames read, and written.
+    /// Frames in the file, and written (after `--trim` and resampling).
     pub frames: (usize, usize),
     /// The spans written.
     pub actions: Vec<ActionSpan>,
@@ -229,6 +267,16 @@ pub fn import_motion(files: &[PathBuf], opts: &ImportOptions) -> Result<(Scene, 
 pub fn import_clip(clip: &Clip, i: usize, opts: &ImportOptions) -> Result<(Human, ImportReport), String> {
     let place = opts.places.get(i).copied().flatten();
     let given = opts.actions.get(i).map_or(&[][..], Vec::as_slice);
+    let read = clip.frames.len();
+    let trimmed;
+    let clip = match opts.trims.get(i).copied().flatten() {
+        Some(trim) => {
+            let kept = trim.frames(clip.frames.len(), clip.fps)?;
+            trimmed = Clip { frames: clip.frames[kept].to_vec(), ..clip.clone() };
+            &trimmed
+        }
+        None => clip,
+    };
     let y_up = match opts.up {
         UpAxis::Y => true,
         UpAxis::Z => false,
@@ -272,7 +320,7 @@ pub fn import_clip(clip: &Clip, i: usize, opts: &ImportOptions) -> Result<(Human
             let p = pose[joint.index()];
             if !polygon.contains(p.truncate()) {
                 return Err(format!(
-                    "frame {f} ({:.2} s): the {} is outside the floor plan, at ({:.2}, {:.2}); place the clip with --place",
+                    "frame {f} ({:.2} s): the {} is outside the floor plan, at ({:.2}, {:.2}); place the clip with --place, or leave the frame out with --trim",
                     f as f64 / opts.fps,
                     crate::scene::JOINT_NAMES[joint.index()].replace('_', " "),
                     p.x,
@@ -314,7 +362,7 @@ pub fn import_clip(clip: &Clip, i: usize, opts: &ImportOptions) -> Result<(Human
         scale,
         y_up,
         stature,
-        frames: (clip.frames.len(), frames.len()),
+        frames: (read, frames.len()),
         actions,
         ever_upright,
     };

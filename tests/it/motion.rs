@@ -8,7 +8,7 @@ use glam::{DVec2, DVec3};
 use npyz::WriterBuilder;
 use shade_sim::geom::Polyline;
 use shade_sim::human::{Body, Joint, Motion, sit, stand};
-use shade_sim::motion::{ImportOptions, Placement, body_frames, import_motion, label_frames, measured_stature};
+use shade_sim::motion::{ImportOptions, Placement, Trim, body_frames, import_motion, label_frames, measured_stature};
 use shade_sim::scene::{Action, FloorPlan, Human, RoomType, Scene};
 use std::path::{Path, PathBuf};
 
@@ -73,6 +73,58 @@ fn the_mocapbank_clip_sits_down_for_about_seven_seconds() {
     // from about 5 s (frame 150) and rises at about 11 s (frame 330).
     assert!((140..=160).contains(&sits[0].start) && (320..=340).contains(&sits[0].end), "{:?}", sits[0]);
     assert!(human.actions.iter().all(|s| s.action != Action::Lie));
+}
+
+#[test]
+fn a_trim_keeps_the_seconds_asked_for_and_the_written_clip_starts_there() {
+    // The mocapbank clip (451 frames at 30 fps) trimmed to its seated stretch, 5 to 11 s: frames
+    // 150 to 330 of the whole import, moved by one height (its own lowest toe goes on the floor),
+    // and every frame of it sitting.
+    // (Kept where captured, which is around the origin.)
+    let around_origin =
+        FloorPlan { polygon: vec![[-15.0, -15.0], [15.0, -15.0], [15.0, 15.0], [-15.0, 15.0]], height: 2.8 };
+    let opts = ImportOptions::new(RoomType::Living, around_origin);
+    let (whole, _) = import_one(&clip("mocapbank_sit.bvh"), &opts);
+    let mut trimmed_opts = opts.clone();
+    trimmed_opts.trims = vec![Some(Trim { from: 5.0, to: Some(11.0) })];
+    let (seated, report) = import_one(&clip("mocapbank_sit.bvh"), &trimmed_opts);
+    assert_eq!(report.frames, (451, 181));
+    assert_eq!(seated.actions, vec![shade_sim::scene::ActionSpan { start: 0, end: 181, action: Action::Sit }]);
+    let (a, b) = (body_frames(&whole).unwrap(), body_frames(&seated).unwrap());
+    let lift = b[0][0].z - a[150][0].z;
+    assert!(lift.abs() > 1e-3, "the seated stretch's lowest toe is higher than the whole clip's");
+    for (k, frame) in b.iter().enumerate() {
+        for (p, q) in frame.iter().zip(&a[150 + k]) {
+            assert!((p.truncate() - q.truncate()).length() < 1e-3 && (p.z - q.z - lift).abs() < 2e-3, "frame {k}");
+        }
+    }
+    // FROM: runs to the end; a placement puts the trimmed clip's start where asked.
+    let mut tail = placed_in_a_big_room();
+    tail.trims = vec![Some(Trim { from: 14.0, to: None })];
+    let (end, report) = import_one(&clip("mocapbank_sit.bvh"), &tail);
+    assert_eq!(report.frames, (451, 31));
+    let pelvis = body_frames(&end).unwrap()[0][Joint::Pelvis.index()];
+    assert!(pelvis.truncate().distance(DVec2::new(15.0, 15.0)) < 1e-3, "{pelvis}");
+}
+
+#[test]
+fn a_trim_outside_the_clip_is_one_line_and_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = clip("freebvh_walk.bvh");
+    let out = dir.path().join("out.json");
+    for (trim, want) in [
+        ("3:4", "--trim 3:4: starts after the clip's end (2.27 s)"),
+        ("2:1", "--trim 2:1: expected FROM:TO seconds with 0 ≤ FROM < TO"),
+        ("half", "--trim half: expected FROM:TO or FROM: (seconds)"),
+    ] {
+        let args = ["--room", "bedroom", "--floor", "6x6", "--place", "3,1,0", "--trim", trim, "--out"];
+        let o = shade_sim(&[&["import-motion", file.to_str().unwrap()][..], &args, &[out.to_str().unwrap()]].concat());
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{trim}: {err}");
+        assert!(err.starts_with("error: ") && err.contains(want), "{trim}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(!out.exists());
+    }
 }
 
 #[test]
