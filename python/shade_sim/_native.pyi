@@ -16,6 +16,9 @@ class SceneError(ValueError):
 class ModelError(ValueError):
     """A model folder (config.json + model.safetensors) that cannot be loaded."""
 
+class MotionError(ValueError):
+    """A motion file or array that cannot be imported."""
+
 class Scene:
     """A shade-scene/1 scene (immutable)."""
 
@@ -66,3 +69,17 @@ def to_mjcf(scene: SceneLike, free_furniture: bool = False, keyframes: bool = Tr
 def mocap_motion_of(scene: SceneLike) -> Dict[str, Any]:
     """{"fps": float, "bodies": [str], "frames": (T, B, 7) array of x, y, z, qw, qx, qy, qz}."""
 def free_spot(scene: SceneLike, clearance: float = 0.35) -> Optional[Tuple[float, float]]: ...
+def import_motion(
+    motions: List[Union[str, os.PathLike, bytes]],
+    room: str,
+    floor: Any,
+    place: Optional[List[Optional[Tuple[float, float, float]]]] = None,
+    trim: Optional[List[Optional[Tuple[float, Optional[float]]]]] = None,
+    fps: float = 30.0,
+    stature: Optional[float] = None,
+    units: str = "auto",
+    up: str = "auto",
+    source_fps: float = 30.0,
+    height: float = 2.8,
+) -> Scene:
+    """A generation input from motion files or .npz archives' bytes (shade_sim.import_motion)."""

@@ -5,25 +5,29 @@
 //! the file format); frames and boxes as numpy arrays. Every call that does real work releases
 //! the GIL (and turns a panic, a bug, into a `RuntimeError`). Errors keep the command line's one-line text (without its `error: ` prefix):
 //! `SceneError` for a scene that cannot be read or breaks the format, `ModelError` for a model
-//! folder that cannot be loaded, `ValueError` for a bad argument. The pure-Python parts
+//! folder that cannot be loaded, `MotionError` for a motion that cannot be imported, `ValueError`
+//! for a bad argument. The pure-Python parts
 //! (`robosuite_arena`, the type stubs) live in `python/shade_sim/`.
 //!
 //! It adds no behaviour of its own: generation is `pipeline::make_layouts`, the check is
-//! `sim::check_scene`, the exports are `export::scene_mjcf` and `export::mocap_motion`.
+//! `sim::check_scene`, the exports are `export::scene_mjcf` and `export::mocap_motion`, the import
+//! of motion is `motion::import_clips`.
 
+use glam::DVec2;
 use numpy::{PyArray2, PyArray3};
 use pyo3::exceptions::{PyIndexError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList, PyString, PyTuple};
+use pyo3::types::{PyBytes, PyDict, PyList, PyString, PyTuple};
 use shade_sim::export::{MjcfOptions, mocap_motion, robot_spot, scene_mjcf};
 use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig};
 use shade_sim::human::people_meeting;
+use shade_sim::motion::{ImportOptions, Placement, Trim, Units, UpAxis, import_clips, npy::read_npz, read_motion};
 use shade_sim::pipeline::{
     LayoutOptions, make_grouped_layouts, people_in_walls_message, rejections_message, room_groups,
     unseen_contacts_message,
 };
 use shade_sim::repair::RepairConfig;
-use shade_sim::scene::{RoomType, Scene};
+use shade_sim::scene::{FloorPlan, RoomType, Scene};
 use shade_sim::sim::{CheckConfig, check_scene};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -34,6 +38,12 @@ pyo3::create_exception!(
     SceneError,
     PyValueError,
     "A scene that cannot be read or breaks the shade-scene/1 format (the CLI's `error:` line)."
+);
+pyo3::create_exception!(
+    shade_sim,
+    MotionError,
+    PyValueError,
+    "A motion file or array that cannot be imported (the CLI's `error:` line)."
 );
 pyo3::create_exception!(
     shade_sim,
@@ -387,17 +397,154 @@ fn free_spot(py: Python<'_>, scene: &Bound<'_, PyAny>, clearance: f64) -> PyResu
     Ok(detached(py, || robot_spot(&scene, clearance))?.map(|[x, y]| (x, y)))
 }
 
+/// `trim=`'s entry for one motion: (from, to) seconds, to None for the clip's end.
+type TrimArg = (f64, Option<f64>);
+
+/// A generation input from motion: `room`'s floor `floor` with one human per motion, in order
+/// (ids h0, h1…), as `shade-sim import-motion` writes it. A motion is a file's path (BVH, .npy,
+/// .npz) or the bytes of a .npz archive (`<motion k>` in errors; the Python wrapper makes them from
+/// arrays). `floor`: (W, D) m from the origin, a list of (x, y) corners, or a scene (Scene, path,
+/// dict) whose floor plan is taken; `height` is the ceiling of the first two. `place` and `trim`
+/// give one entry (or None) per motion, in order: (x, y, yaw_deg), and (from, to) seconds with to
+/// None for the end.
+#[pyfunction]
+#[pyo3(signature = (motions, room, floor, place=None, trim=None, fps=30.0, stature=None, units="auto", up="auto", source_fps=30.0, height=2.8))]
+#[allow(clippy::too_many_arguments)]
+fn import_motion<'py>(
+    py: Python<'py>,
+    motions: Vec<Bound<'py, PyAny>>,
+    room: &str,
+    floor: &Bound<'py, PyAny>,
+    place: Option<Vec<Option<(f64, f64, f64)>>>,
+    trim: Option<Vec<Option<TrimArg>>>,
+    fps: f64,
+    stature: Option<f64>,
+    units: &str,
+    up: &str,
+    source_fps: f64,
+    height: f64,
+) -> PyResult<PyScene> {
+    let room = RoomType::ALL
+        .into_iter()
+        .find(|r| r.to_string() == room)
+        .ok_or_else(|| PyValueError::new_err(format!("room: {room:?} is not bedroom, living or dining")))?;
+    let (place, trim) = (place.unwrap_or_default(), trim.unwrap_or_default());
+    if place.len() > motions.len() || trim.len() > motions.len() {
+        return Err(PyValueError::new_err(format!("place and trim: one entry per motion, at most {}", motions.len())));
+    }
+    for (name, v) in [("fps", fps), ("source_fps", source_fps)] {
+        if !(v.is_finite() && (1.0..=1000.0).contains(&v)) {
+            return Err(PyValueError::new_err(format!("{name}: must be 1 to 1000 frames per second, not {v}")));
+        }
+    }
+    if let Some(s) = stature.filter(|s| !(s.is_finite() && (0.5..=2.5).contains(s))) {
+        return Err(PyValueError::new_err(format!("stature: must be 0.5 to 2.5 m, not {s}")));
+    }
+    let mut opts = ImportOptions::new(room, floor_plan_of(py, floor, height)?);
+    opts.places =
+        place.into_iter().map(|p| p.map(|(x, y, yaw)| Placement { at: DVec2::new(x, y), yaw_degrees: yaw })).collect();
+    opts.trims = trim.into_iter().map(|t| t.map(|(from, to)| Trim { from, to })).collect();
+    opts.fps = fps;
+    opts.source_fps = source_fps;
+    opts.stature = stature;
+    opts.units = match units {
+        "auto" => Units::Auto,
+        "m" => Units::Metres,
+        "cm" => Units::Centimetres,
+        "in" => Units::Inches,
+        "cmu" => Units::Cmu,
+        _ => return Err(PyValueError::new_err(format!("units: {units:?} is not auto, m, cm, in or cmu"))),
+    };
+    opts.up = match up {
+        "auto" => UpAxis::Auto,
+        "y" => UpAxis::Y,
+        "z" => UpAxis::Z,
+        _ => return Err(PyValueError::new_err(format!("up: {up:?} is not auto, y or z"))),
+    };
+    enum Source {
+        File(PathBuf),
+        Npz(Vec<u8>),
+    }
+    let sources: Vec<Source> = motions
+        .iter()
+        .map(|m| match m.cast::<PyBytes>() {
+            Ok(bytes) => Ok(Source::Npz(bytes.as_bytes().to_vec())),
+            Err(_) => m.extract::<PathBuf>().map(Source::File).map_err(|_| {
+                PyValueError::new_err(
+                    "motions: each is a path, an array or a dict of arrays (or a .npz archive's bytes)",
+                )
+            }),
+        })
+        .collect::<PyResult<_>>()?;
+    let (scene, reports) = detached(py, || {
+        let clips = sources
+            .iter()
+            .enumerate()
+            .map(|(k, source)| match source {
+                Source::File(path) => Ok((path.clone(), read_motion(path, opts.source_fps)?)),
+                Source::Npz(bytes) => {
+                    let name = PathBuf::from(format!("<motion {k}>"));
+                    read_npz(bytes, opts.source_fps)
+                        .map(|clip| (name.clone(), clip))
+                        .map_err(|m| shade_sim::motion::MotionError::invalid(name, m))
+                }
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        import_clips(&clips, &opts)
+    })?
+    .map_err(|e| MotionError::new_err(e.to_string()))?;
+    // As the command line's warnings.
+    for r in reports.iter().filter(|r| !r.ever_upright) {
+        let file = r.file.display();
+        user_warning(
+            py,
+            &format!(
+                "{file}: the trunk is never upright (within 45° of the up axis); if the person stands or sits at all, the up axis is wrong (up=)"
+            ),
+        )?;
+    }
+    for m in people_meeting(&scene, CheckConfig::default().tolerance) {
+        user_warning(py, &format!("{m}; put their clips apart (place=)"))?;
+    }
+    Ok(PyScene::new(scene))
+}
+
+/// `floor=`: (W, D), a list of (x, y) corners, or a scene whose floor plan is taken.
+fn floor_plan_of(py: Python<'_>, floor: &Bound<'_, PyAny>, height: f64) -> PyResult<FloorPlan> {
+    if !(height.is_finite() && height > 0.0) {
+        return Err(PyValueError::new_err(format!("height: must be a positive number of metres, not {height}")));
+    }
+    if let Ok((w, d)) = floor.extract::<(f64, f64)>() {
+        if !(w.is_finite() && d.is_finite() && w > 0.0 && d > 0.0) {
+            return Err(PyValueError::new_err(format!(
+                "floor: ({w}, {d}): the sides must be positive numbers of metres"
+            )));
+        }
+        return Ok(FloorPlan { polygon: vec![[0.0, 0.0], [w, 0.0], [w, d], [0.0, d]], height });
+    }
+    if let Ok(polygon) = floor.extract::<Vec<[f64; 2]>>() {
+        return Ok(FloorPlan { polygon, height });
+    }
+    scene_of(py, floor).map(|scene| scene.floor_plan.clone()).map_err(|_| {
+        PyValueError::new_err(
+            "floor: expected (W, D) in metres, a list of (x, y) corners, or a scene (Scene, path or dict)",
+        )
+    })
+}
+
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyScene>()?;
     m.add("SceneError", m.py().get_type::<SceneError>())?;
     m.add("ModelError", m.py().get_type::<ModelError>())?;
+    m.add("MotionError", m.py().get_type::<MotionError>())?;
     m.add_function(wrap_pyfunction!(load_scene, m)?)?;
     m.add_function(wrap_pyfunction!(generate, m)?)?;
     m.add_function(wrap_pyfunction!(check, m)?)?;
     m.add_function(wrap_pyfunction!(to_mjcf, m)?)?;
     m.add_function(wrap_pyfunction!(mocap_motion_of, m)?)?;
     m.add_function(wrap_pyfunction!(free_spot, m)?)?;
+    m.add_function(wrap_pyfunction!(import_motion, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -7,9 +7,9 @@ use anyhow::{Context, bail};
 use clap::{Args, ValueEnum};
 use glam::DVec2;
 use shade_sim::human::people_meeting;
-use shade_sim::motion::{ImportOptions, MotionError, Placement, Trim, Units, UpAxis, import_motion};
-use shade_sim::scene::{ActionSpan, FloorPlan, Scene};
-use shade_sim::sim::{CheckConfig, people_in_walls};
+use shade_sim::motion::{ImportOptions, Placement, Trim, Units, UpAxis, import_motion};
+use shade_sim::scene::{ActionSpan, FloorPlan};
+use shade_sim::sim::CheckConfig;
 use std::path::{Path, PathBuf};
 
 #[derive(Debug, Args)]
@@ -152,9 +152,6 @@ pub fn run(args: &ImportMotionArgs, global: &GlobalArgs) -> anyhow::Result<ExitS
         bail!("{}: --out is one of the motion files; it would be overwritten", args.out.display());
     }
     let (scene, reports) = import_motion(&args.motions, &opts)?;
-    if let Some(error) = body_in_a_wall(&scene, &args.motions, opts.fps) {
-        return Err(error.into());
-    }
     scene.save(&args.out)?;
     for r in reports.iter().filter(|r| !r.ever_upright) {
         tracing::warn!(
@@ -203,25 +200,4 @@ pub fn run(args: &ImportMotionArgs, global: &GlobalArgs) -> anyhow::Result<ExitS
         print_text(&text)?;
     }
     Ok(ExitStatus::Success)
-}
-
-/// The deepest place where a body of `scene` reaches into a wall, as `check` finds it, as an error
-/// naming its file (`files[k]` made human k): such an input fails `check` whatever the layout (the
-/// pelvis and ankles `import_motion` tests can be inside the floor while a shoulder or an arm
-/// swung out is in the wall).
-fn body_in_a_wall(scene: &Scene, files: &[PathBuf], fps: f64) -> Option<MotionError> {
-    let walls = people_in_walls(scene, &CheckConfig::default());
-    let v = walls.iter().max_by(|a, b| a.depth.total_cmp(&b.depth))?;
-    let human = scene.humans.iter().position(|h| Some(&h.id) == v.human.as_ref()).unwrap_or(0);
-    let frame = v.frame.unwrap_or(0);
-    let edge = v.object.as_deref().and_then(|o| o.strip_prefix("wall")).unwrap_or("?");
-    let bone = v.bone.as_deref().unwrap_or("body").replace('_', " ").replace('-', "–");
-    Some(MotionError::invalid(
-        files.get(human).cloned().unwrap_or_default(),
-        format!(
-            "frame {frame} ({:.2} s): the {bone} is {:.2} m inside the wall of floor-plan edge {edge}; place the clip with --place, or leave the frame out with --trim",
-            frame as f64 / fps,
-            v.depth
-        ),
-    ))
 }

@@ -5,8 +5,9 @@
 //! our 19 joints among them; [`import_motion`] then makes the up axis z, the units metres (from the
 //! body's measured height), keeps the stretch of time asked for ([`Trim`]), puts the lowest toe
 //! on the floor, places the clip where asked, resamples it and labels every frame's action
-//! ([`labels`]). It does not generate furniture, and
-//! it does not smooth or fix the motion beyond that.
+//! ([`labels`]); a body that leaves the floor plan or reaches into a wall is an error naming the
+//! frame. [`import_clips`] does the same for clips already read (arrays handed over in memory).
+//! It does not generate furniture, and it does not smooth or fix the motion beyond that.
 
 pub mod bvh;
 mod clip;
@@ -22,6 +23,7 @@ pub use rig::{Retargeted, retarget};
 
 use crate::human::{Body, Joint, Pose, round_mm, stand_local};
 use crate::scene::{ActionSpan, FloorPlan, Human, RoomType, Scene, validate};
+use crate::sim::{CheckConfig, people_in_walls};
 use glam::{DVec2, DVec3};
 use std::path::{Path, PathBuf};
 
@@ -238,6 +240,24 @@ pub fn read_motion(file: &Path, source_fps: f64) -> Result<Clip, MotionError> {
 
 /// A generation input: `opts.floor` with one human per file, in file order, ids `h0`, `h1`…
 pub fn import_motion(files: &[PathBuf], opts: &ImportOptions) -> Result<(Scene, Vec<ImportReport>), MotionError> {
+    let clips = files
+        .iter()
+        .map(|file| Ok((file.clone(), read_motion(file, opts.source_fps)?)))
+        .collect::<Result<Vec<_>, MotionError>>()?;
+    import_clips(&clips, opts)
+}
+
+/// [`import_motion`] of clips already read, each with the name its errors give (its file, or
+/// `<motion 0>` for an array handed over in memory). Besides the input's validation, a body
+/// reaching into a wall further than `check` tolerates is an error at its deepest (the frame, its
+/// time, the bone, the depth, the floor-plan edge): such an input fails `check` whatever the
+/// layout, although the pelvis and ankles that [`import_clip`] tests are inside the floor (an arm
+/// swung out, a shoulder along the wall).
+pub fn import_clips(
+    clips: &[(PathBuf, Clip)],
+    opts: &ImportOptions,
+) -> Result<(Scene, Vec<ImportReport>), MotionError> {
+    let files: Vec<PathBuf> = clips.iter().map(|(file, _)| file.clone()).collect();
     let mut scene = Scene {
         format: crate::scene::FORMAT.to_string(),
         room_type: opts.room_type,
@@ -246,9 +266,8 @@ pub fn import_motion(files: &[PathBuf], opts: &ImportOptions) -> Result<(Scene, 
         humans: Vec::new(),
     };
     let mut reports = Vec::new();
-    for (i, file) in files.iter().enumerate() {
-        let clip = read_motion(file, opts.source_fps)?;
-        let (human, report) = import_clip(&clip, i, opts).map_err(|m| MotionError::invalid(file, m))?;
+    for (i, (file, clip)) in clips.iter().enumerate() {
+        let (human, report) = import_clip(clip, i, opts).map_err(|m| MotionError::invalid(file, m))?;
         scene.humans.push(human);
         reports.push(ImportReport { file: file.clone(), ..report });
     }
@@ -259,7 +278,29 @@ pub fn import_motion(files: &[PathBuf], opts: &ImportOptions) -> Result<(Scene, 
         let file = files.get(human.unwrap_or(0)).cloned().unwrap_or_default();
         return Err(MotionError::invalid(file, format!("the input it makes is not valid: {problem}")));
     }
+    if let Some(error) = body_in_a_wall(&scene, &files, opts.fps) {
+        return Err(error);
+    }
     Ok((scene, reports))
+}
+
+/// The deepest place where a body of `scene` reaches into a wall, as `check` finds it, as an error
+/// naming its file (`files[k]` made human k).
+fn body_in_a_wall(scene: &Scene, files: &[PathBuf], fps: f64) -> Option<MotionError> {
+    let walls = people_in_walls(scene, &CheckConfig::default());
+    let v = walls.iter().max_by(|a, b| a.depth.total_cmp(&b.depth))?;
+    let human = scene.humans.iter().position(|h| Some(&h.id) == v.human.as_ref()).unwrap_or(0);
+    let frame = v.frame.unwrap_or(0);
+    let edge = v.object.as_deref().and_then(|o| o.strip_prefix("wall")).unwrap_or("?");
+    let bone = v.bone.as_deref().unwrap_or("body").replace('_', " ").replace('-', "–");
+    Some(MotionError::invalid(
+        files.get(human).cloned().unwrap_or_default(),
+        format!(
+            "frame {frame} ({:.2} s): the {bone} is {:.2} m inside the wall of floor-plan edge {edge}; place the clip with --place, or leave the frame out with --trim",
+            frame as f64 / fps,
+            v.depth
+        ),
+    ))
 }
 
 /// One clip as the human `h{i}` of an input (`opts.places[i]` and `opts.actions[i]` apply to

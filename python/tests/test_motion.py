@@ -1,0 +1,71 @@
+"""Motion in from Python: files as the command line imports them, and joint arrays in memory (what a
+body model gives for an AMASS or SMPL-X fit)."""
+
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import shade_sim
+
+
+def clip(root, name):
+    return os.path.join(root, "scenes", "motion", name)
+
+
+def test_a_bvh_file_imports_as_the_command_line_writes_it(cli, root, tmp_path):
+    walk = clip(root, "freebvh_walk.bvh")
+    out = tmp_path / "walk.json"
+    args = ["import-motion", walk, "--room", "bedroom", "--floor", "4x4", "--place", "1,1,0", "--trim", "0.5:2"]
+    subprocess.run([cli, "-q", *args, "--out", str(out)], check=True)
+    scene = shade_sim.import_motion([walk], "bedroom", (4, 4), place=[(1, 1, 0)], trim=[(0.5, 2)])
+    assert scene.to_json() == shade_sim.load_scene(str(out)).to_json()
+    assert scene.human_ids == ["h0"] and scene.frames(0).shape == (46, 19, 3)
+
+
+def test_a_scene_human_as_an_array_comes_back_as_it_was(root):
+    # A person who walks in, sits down and walks out, as (T, 19, 3) in metres with our joint
+    # names; unnamed, and in centimetres (detected), the same.
+    source = shade_sim.load_scene(os.path.join(root, "tests", "inputs", "sofa_visit.json"))
+    frames = source.frames("guest")
+    names = source.to_dict()["humans"][0]["skeleton"]["joints"]
+    assert source.to_dict()["humans"][0]["id"] == "guest"
+    named = shade_sim.import_motion([{"joints": frames, "names": names, "fps": 10}], "living", source, fps=10)
+    back = named.frames(0)
+    assert back.shape == frames.shape
+    assert np.abs(back - frames).max() < 5e-4
+    assert [s["action"] for s in named.to_dict()["humans"][0]["actions"]] == ["walk", "stand", "walk", "sit", "walk", "stand", "walk"]
+    unnamed = shade_sim.import_motion([frames * 100.0], "living", source, fps=10, source_fps=10)
+    assert np.abs(unnamed.frames(0) - back).max() < 5e-4
+
+
+def test_motions_that_cannot_be_imported_raise_motion_error_with_the_command_line_text(cli, root, tmp_path):
+    walk = clip(root, "freebvh_walk.bvh")
+    with pytest.raises(shade_sim.MotionError, match=r"^<motion 0>: array `joints` has shape \[4, 22, 2\]"):
+        shade_sim.import_motion([np.zeros((4, 22, 2))], "living", (5, 4))
+    with pytest.raises(shade_sim.MotionError, match=r"^<motion 1>: unknown rig: 7 joints without names"):
+        shade_sim.import_motion([walk, np.zeros((4, 7, 3))], "living", (5, 4), place=[(2, 2, 0)])
+    out = tmp_path / "never.json"
+    for extra, python in [
+        (["--trim", "3:4"], dict(trim=[(3, 4)])),
+        (["--place", "2,3.5,0"], dict(place=[(2, 3.5, 0)])),
+    ]:
+        args = ["import-motion", walk, "--room", "bedroom", "--floor", "4x4", "--out", str(out), *extra]
+        if "--place" not in extra:
+            args += ["--place", "2,1,0"]
+            python["place"] = [(2, 1, 0)]
+        r = subprocess.run([cli, *args], capture_output=True, text=True)
+        assert r.returncode == 2 and r.stderr.startswith("error: ")
+        with pytest.raises(shade_sim.MotionError) as e:
+            shade_sim.import_motion([walk], "bedroom", (4, 4), **python)
+        assert str(e.value) == r.stderr.strip()[len("error: "):]
+        assert not out.exists()
+    with pytest.raises(shade_sim.MotionError, match="missing.bvh"):
+        shade_sim.import_motion([str(tmp_path / "missing.bvh")], "living", (5, 4))
+    with pytest.raises(ValueError, match='room: "kitchen"'):
+        shade_sim.import_motion([walk], "kitchen", (5, 4))
+    with pytest.raises(ValueError, match="floor: expected"):
+        shade_sim.import_motion([walk], "living", "5x4")
+    with pytest.raises(ValueError, match="motions: "):
+        shade_sim.import_motion([42], "living", (5, 4))
