@@ -11,16 +11,20 @@
 //!
 //! This is the only module of the library that joins `generator`, `repair` and `sim`; it adds no
 //! behaviour of its own beyond the resampling loop, and a tally of what each input's rejected
-//! layouts hit ([`Rejections`]), so that an input without a clean layout is told why.
+//! layouts hit ([`Rejections`]), so that an input without a clean layout is told why. For the
+//! import of motion ([`crate::motion`]) it has the check's refusal of a body in a wall
+//! ([`body_in_a_wall`]), which the command line and Python share.
 
 use crate::generator::{GenError, Generator, GuidanceConfig};
 use crate::human::ContactBox;
+use crate::motion::MotionError;
 use crate::physics::Physics;
 use crate::repair::{RepairConfig, RepairReport, repair_scene};
 use crate::scene::{RoomType, Scene};
 use crate::sim::{CheckConfig, CheckReport, SimPhysics, Violation, ViolationKind, check_scene, people_in_walls};
 use rayon::prelude::*;
 use std::borrow::Borrow;
+use std::path::PathBuf;
 use std::sync::Arc;
 
 /// How to make layouts.
@@ -189,6 +193,28 @@ pub fn people_in_walls_message(walls: &[Violation]) -> Option<String> {
         worst.object.as_deref().unwrap_or("a wall"),
         worst.frame.unwrap_or(0),
         walls.len()
+    ))
+}
+
+/// The deepest place where a body of an imported `scene` reaches into a wall, as `check` finds
+/// it, as an error naming its file (`files[k]` made human k): the frame, its time, the bone, the
+/// depth and the floor-plan edge. Such an input fails `check` whatever the layout, although the
+/// pelvis and ankles that `motion::import_clip` tests are inside the floor (an arm swung out, a
+/// shoulder along the wall).
+pub fn body_in_a_wall(scene: &Scene, files: &[PathBuf], fps: f64) -> Option<MotionError> {
+    let walls = people_in_walls(scene, &CheckConfig::default());
+    let v = walls.iter().max_by(|a, b| a.depth.total_cmp(&b.depth))?;
+    let human = scene.humans.iter().position(|h| Some(&h.id) == v.human.as_ref()).unwrap_or(0);
+    let frame = v.frame.unwrap_or(0);
+    let edge = v.object.as_deref().and_then(|o| o.strip_prefix("wall")).unwrap_or("?");
+    let bone = v.bone.as_deref().unwrap_or("body").replace('_', " ").replace('-', "–");
+    Some(MotionError::invalid(
+        files.get(human).cloned().unwrap_or_default(),
+        format!(
+            "frame {frame} ({:.2} s): the {bone} is {:.2} m inside the wall of floor-plan edge {edge}; place the clip with --place, or leave the frame out with --trim",
+            frame as f64 / fps,
+            v.depth
+        ),
     ))
 }
 

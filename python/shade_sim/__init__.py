@@ -90,6 +90,7 @@ def import_motion(
     up: str = "auto",
     source_fps: float = 30.0,
     height: float = 2.8,
+    actions: Optional[Sequence[Optional[Sequence[dict]]]] = None,
 ) -> Scene:
     """A generation input from human motion, one human per motion (ids h0, h1, ...), as
     ``shade-sim import-motion`` writes it: retargeted onto our body, the lowest toe on the floor,
@@ -104,13 +105,16 @@ def import_motion(
     ``floor``: (W, D) metres from the origin, a list of (x, y) corners, or a scene whose floor
     plan is taken (``height``: the ceiling of the first two). ``place``: per motion, None (kept
     where captured) or (x, y, yaw_deg) for its first pelvis and facing. ``trim``: per motion,
-    None or (from, to) seconds of the motion, to None for its end. A motion that cannot be read,
+    None or (from, to) seconds of the motion, to None for its end. ``actions``: per motion, None or
+    a list of ``{"action": "sit", "start": 30, "end": 90}`` (frames as written) that replace the
+    automatic labels where they lie. A motion that cannot be read,
     that leaves the floor plan or reaches into a wall raises ``MotionError`` naming the file (or
     ``<motion k>`` for an array) and the frame."""
     items = [_motion_item(m) for m in motions]
     return _native.import_motion(
         items, room, floor, place=None if place is None else list(place), trim=None if trim is None else list(trim),
         fps=fps, stature=stature, units=units, up=up, source_fps=source_fps, height=height,
+        actions=None if actions is None else [None if a is None else list(a) for a in actions],
     )
 
 

@@ -81,5 +81,6 @@ def import_motion(
     up: str = "auto",
     source_fps: float = 30.0,
     height: float = 2.8,
+    actions: Optional[List[Optional[List[Dict[str, Any]]]]] = None,
 ) -> Scene:
     """A generation input from motion files or .npz archives' bytes (shade_sim.import_motion)."""

@@ -23,11 +23,11 @@ use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig};
 use shade_sim::human::people_meeting;
 use shade_sim::motion::{ImportOptions, Placement, Trim, Units, UpAxis, import_clips, npy::read_npz, read_motion};
 use shade_sim::pipeline::{
-    LayoutOptions, make_grouped_layouts, people_in_walls_message, rejections_message, room_groups,
+    LayoutOptions, body_in_a_wall, make_grouped_layouts, people_in_walls_message, rejections_message, room_groups,
     unseen_contacts_message,
 };
 use shade_sim::repair::RepairConfig;
-use shade_sim::scene::{FloorPlan, RoomType, Scene};
+use shade_sim::scene::{ActionSpan, FloorPlan, RoomType, Scene};
 use shade_sim::sim::{CheckConfig, check_scene};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -404,11 +404,11 @@ type TrimArg = (f64, Option<f64>);
 /// (ids h0, h1…), as `shade-sim import-motion` writes it. A motion is a file's path (BVH, .npy,
 /// .npz) or the bytes of a .npz archive (`<motion k>` in errors; the Python wrapper makes them from
 /// arrays). `floor`: (W, D) m from the origin, a list of (x, y) corners, or a scene (Scene, path,
-/// dict) whose floor plan is taken; `height` is the ceiling of the first two. `place` and `trim`
-/// give one entry (or None) per motion, in order: (x, y, yaw_deg), and (from, to) seconds with to
-/// None for the end.
+/// dict) whose floor plan is taken; `height` is the ceiling of the first two. `place`, `trim` and
+/// `actions` give one entry (or None) per motion, in order: (x, y, yaw_deg), (from, to) seconds
+/// with to None for the end, and spans whose action is given rather than labelled.
 #[pyfunction]
-#[pyo3(signature = (motions, room, floor, place=None, trim=None, fps=30.0, stature=None, units="auto", up="auto", source_fps=30.0, height=2.8))]
+#[pyo3(signature = (motions, room, floor, place=None, trim=None, fps=30.0, stature=None, units="auto", up="auto", source_fps=30.0, height=2.8, actions=None))]
 #[allow(clippy::too_many_arguments)]
 fn import_motion<'py>(
     py: Python<'py>,
@@ -423,14 +423,16 @@ fn import_motion<'py>(
     up: &str,
     source_fps: f64,
     height: f64,
+    actions: Option<Vec<Option<Bound<'py, PyAny>>>>,
 ) -> PyResult<PyScene> {
     let room = RoomType::ALL
         .into_iter()
         .find(|r| r.to_string() == room)
         .ok_or_else(|| PyValueError::new_err(format!("room: {room:?} is not bedroom, living or dining")))?;
-    let (place, trim) = (place.unwrap_or_default(), trim.unwrap_or_default());
-    if place.len() > motions.len() || trim.len() > motions.len() {
-        return Err(PyValueError::new_err(format!("place and trim: one entry per motion, at most {}", motions.len())));
+    let (place, trim, actions) = (place.unwrap_or_default(), trim.unwrap_or_default(), actions.unwrap_or_default());
+    if place.len() > motions.len() || trim.len() > motions.len() || actions.len() > motions.len() {
+        let most = motions.len();
+        return Err(PyValueError::new_err(format!("place, trim and actions: one entry per motion, at most {most}")));
     }
     for (name, v) in [("fps", fps), ("source_fps", source_fps)] {
         if !(v.is_finite() && (1.0..=1000.0).contains(&v)) {
@@ -444,6 +446,10 @@ fn import_motion<'py>(
     opts.places =
         place.into_iter().map(|p| p.map(|(x, y, yaw)| Placement { at: DVec2::new(x, y), yaw_degrees: yaw })).collect();
     opts.trims = trim.into_iter().map(|t| t.map(|(from, to)| Trim { from, to })).collect();
+    opts.actions = actions
+        .iter()
+        .map(|spans| spans.as_ref().map_or(Ok(Vec::new()), |s| spans_of(py, s)))
+        .collect::<PyResult<_>>()?;
     opts.fps = fps;
     opts.source_fps = source_fps;
     opts.stature = stature;
@@ -490,7 +496,12 @@ fn import_motion<'py>(
                 }
             })
             .collect::<Result<Vec<_>, _>>()?;
-        import_clips(&clips, &opts)
+        let (scene, reports) = import_clips(&clips, &opts)?;
+        let files: Vec<PathBuf> = clips.into_iter().map(|(file, _)| file).collect();
+        match body_in_a_wall(&scene, &files, opts.fps) {
+            Some(error) => Err(error),
+            None => Ok((scene, reports)),
+        }
     })?
     .map_err(|e| MotionError::new_err(e.to_string()))?;
     // As the command line's warnings.
@@ -507,6 +518,13 @@ fn import_motion<'py>(
         user_warning(py, &format!("{m}; put their clips apart (place=)"))?;
     }
     Ok(PyScene::new(scene))
+}
+
+/// One motion's `actions=` entry: a list of `{"action": "sit", "start": 30, "end": 90}` (frames as
+/// written), read as `--actions` reads its file.
+fn spans_of(py: Python<'_>, spans: &Bound<'_, PyAny>) -> PyResult<Vec<ActionSpan>> {
+    let text: String = py.import("json")?.call_method1("dumps", (spans,))?.extract()?;
+    serde_json::from_str(&text).map_err(|e| PyValueError::new_err(format!("actions: not a list of action spans: {e}")))
 }
 
 /// `floor=`: (W, D), a list of (x, y) corners, or a scene whose floor plan is taken.

@@ -69,3 +69,23 @@ def test_motions_that_cannot_be_imported_raise_motion_error_with_the_command_lin
         shade_sim.import_motion([walk], "living", "5x4")
     with pytest.raises(ValueError, match="motions: "):
         shade_sim.import_motion([42], "living", (5, 4))
+
+
+def test_an_imported_array_is_furnished_checked_and_exported_from_python(root):
+    # The README's BVH -> input -> generate -> MJCF, in Python, from a walk handed over as an
+    # array; given spans replace the labels where they lie.
+    walk = shade_sim.import_motion([clip(root, "freebvh_walk.bvh")], "bedroom", (4, 4), place=[(1, 1, 0)])
+    frames = walk.frames(0)
+    names = walk.to_dict()["humans"][0]["skeleton"]["joints"]
+    spans = [{"action": "stand", "start": 0, "end": 10}]
+    again = shade_sim.import_motion(
+        [{"joints": frames, "names": names, "fps": 30}], "bedroom", walk, actions=[spans]
+    )
+    actions = again.to_dict()["humans"][0]["actions"]
+    assert actions[0] == {"action": "stand", "start": 0, "end": 10} and actions[1]["action"] == "walk"
+    layout = shade_sim.generate(again, seed=0, require_clean=True)[0]
+    assert shade_sim.check(layout) == []
+    mjcf = shade_sim.to_mjcf(layout)
+    assert "<mujoco" in mjcf and 'body name="h0_pelvis-spine" mocap="true"' in mjcf
+    with pytest.raises(ValueError, match="actions: not a list of action spans"):
+        shade_sim.import_motion([clip(root, "freebvh_walk.bvh")], "bedroom", (4, 4), place=[(1, 1, 0)], actions=[[{"start": 0}]])

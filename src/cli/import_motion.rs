@@ -8,6 +8,7 @@ use clap::{Args, ValueEnum};
 use glam::DVec2;
 use shade_sim::human::people_meeting;
 use shade_sim::motion::{ImportOptions, Placement, Trim, Units, UpAxis, import_motion};
+use shade_sim::pipeline::body_in_a_wall;
 use shade_sim::scene::{ActionSpan, FloorPlan};
 use shade_sim::sim::CheckConfig;
 use std::path::{Path, PathBuf};
@@ -152,6 +153,9 @@ pub fn run(args: &ImportMotionArgs, global: &GlobalArgs) -> anyhow::Result<ExitS
         bail!("{}: --out is one of the motion files; it would be overwritten", args.out.display());
     }
     let (scene, reports) = import_motion(&args.motions, &opts)?;
+    if let Some(error) = body_in_a_wall(&scene, &args.motions, opts.fps) {
+        return Err(error.into());
+    }
     scene.save(&args.out)?;
     for r in reports.iter().filter(|r| !r.ever_upright) {
         tracing::warn!(

@@ -5,9 +5,11 @@
 //! our 19 joints among them; [`import_motion`] then makes the up axis z, the units metres (from the
 //! body's measured height), keeps the stretch of time asked for ([`Trim`]), puts the lowest toe
 //! on the floor, places the clip where asked, resamples it and labels every frame's action
-//! ([`labels`]); a body that leaves the floor plan or reaches into a wall is an error naming the
-//! frame. [`import_clips`] does the same for clips already read (arrays handed over in memory).
-//! It does not generate furniture, and it does not smooth or fix the motion beyond that.
+//! ([`labels`]); a pelvis or ankle that leaves the floor plan is an error naming the frame.
+//! [`import_clips`] does the same for clips already read (arrays handed over in memory). A body
+//! reaching into a wall is refused by the callers with the check's own test
+//! (`pipeline::body_in_a_wall`). It does not generate furniture, and it does not smooth or fix
+//! the motion beyond that.
 
 pub mod bvh;
 mod clip;
@@ -23,7 +25,6 @@ pub use rig::{Retargeted, retarget};
 
 use crate::human::{Body, Joint, Pose, round_mm, stand_local};
 use crate::scene::{ActionSpan, FloorPlan, Human, RoomType, Scene, validate};
-use crate::sim::{CheckConfig, people_in_walls};
 use glam::{DVec2, DVec3};
 use std::path::{Path, PathBuf};
 
@@ -248,16 +249,11 @@ pub fn import_motion(files: &[PathBuf], opts: &ImportOptions) -> Result<(Scene, 
 }
 
 /// [`import_motion`] of clips already read, each with the name its errors give (its file, or
-/// `<motion 0>` for an array handed over in memory). Besides the input's validation, a body
-/// reaching into a wall further than `check` tolerates is an error at its deepest (the frame, its
-/// time, the bone, the depth, the floor-plan edge): such an input fails `check` whatever the
-/// layout, although the pelvis and ankles that [`import_clip`] tests are inside the floor (an arm
-/// swung out, a shoulder along the wall).
+/// `<motion 0>` for an array handed over in memory).
 pub fn import_clips(
     clips: &[(PathBuf, Clip)],
     opts: &ImportOptions,
 ) -> Result<(Scene, Vec<ImportReport>), MotionError> {
-    let files: Vec<PathBuf> = clips.iter().map(|(file, _)| file.clone()).collect();
     let mut scene = Scene {
         format: crate::scene::FORMAT.to_string(),
         room_type: opts.room_type,
@@ -275,32 +271,10 @@ pub fn import_clips(
         // The file of the human at fault (`humans[k]…`), else the first (a floor plan's problem,
         // or the frames of all humans together).
         let human = problem.path.strip_prefix("humans[").and_then(|r| r.split(']').next()?.parse::<usize>().ok());
-        let file = files.get(human.unwrap_or(0)).cloned().unwrap_or_default();
+        let file = clips.get(human.unwrap_or(0)).map(|(file, _)| file.clone()).unwrap_or_default();
         return Err(MotionError::invalid(file, format!("the input it makes is not valid: {problem}")));
     }
-    if let Some(error) = body_in_a_wall(&scene, &files, opts.fps) {
-        return Err(error);
-    }
     Ok((scene, reports))
-}
-
-/// The deepest place where a body of `scene` reaches into a wall, as `check` finds it, as an error
-/// naming its file (`files[k]` made human k).
-fn body_in_a_wall(scene: &Scene, files: &[PathBuf], fps: f64) -> Option<MotionError> {
-    let walls = people_in_walls(scene, &CheckConfig::default());
-    let v = walls.iter().max_by(|a, b| a.depth.total_cmp(&b.depth))?;
-    let human = scene.humans.iter().position(|h| Some(&h.id) == v.human.as_ref()).unwrap_or(0);
-    let frame = v.frame.unwrap_or(0);
-    let edge = v.object.as_deref().and_then(|o| o.strip_prefix("wall")).unwrap_or("?");
-    let bone = v.bone.as_deref().unwrap_or("body").replace('_', " ").replace('-', "–");
-    Some(MotionError::invalid(
-        files.get(human).cloned().unwrap_or_default(),
-        format!(
-            "frame {frame} ({:.2} s): the {bone} is {:.2} m inside the wall of floor-plan edge {edge}; place the clip with --place, or leave the frame out with --trim",
-            frame as f64 / fps,
-            v.depth
-        ),
-    ))
 }
 
 /// One clip as the human `h{i}` of an input (`opts.places[i]` and `opts.actions[i]` apply to

@@ -20,7 +20,7 @@ fn allowed(module: &str) -> Option<Vec<&'static str>> {
         "motion" => vec!["geom", "scene", "human"],
         "data" => above_base(&[]),
         "generator" | "repair" | "sim" | "eval" | "export" => above_base(&["data"]),
-        "pipeline" => above_base(&["data", "generator", "repair", "sim"]),
+        "pipeline" => above_base(&["data", "generator", "repair", "sim", "motion"]),
         "lib" | "cli" | "main" => return None,
         other => panic!("src/{other}: a module this test does not know; give it a layer"),
     })
