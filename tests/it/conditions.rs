@@ -46,6 +46,37 @@ fn sitting_box_is_the_support_volume_under_pelvis_and_thighs() {
 }
 
 #[test]
+fn a_seat_sat_on_again_is_one_support_and_the_next_place_on_a_sofa_another() {
+    // One person sits, stands, sits again 10 cm further along the same seat, stands, and sits on
+    // the place 55 cm along (a sofa's next seat); then touches the same spot twice.
+    let body = Body::default();
+    let seat = |x: f64| sit(&body, DVec2::new(x, 2.0), 0.45, 0.0);
+    let up = |x: f64| stand(&body, DVec2::new(x, 1.6), 0.0);
+    let palm = DVec3::new(4.0, 2.8, 0.9);
+    let mut m = Motion::new(body, 30.0);
+    m.hold(seat(2.0), 10, Action::Sit).hold(up(2.0), 10, Action::Stand).hold(seat(2.1), 10, Action::Sit);
+    m.hold(up(2.1), 10, Action::Stand).hold(seat(2.65), 10, Action::Sit).hold(up(2.65), 10, Action::Stand);
+    let reach = touch(&body, palm, 0.0, Side::Right);
+    m.hold(reach, 10, Action::Touch).hold(up(3.6), 10, Action::Stand).hold(reach, 10, Action::Touch);
+    let mut scene = room();
+    scene.humans.push(m.into_human("h0"));
+    let boxes = Conditions::contact_boxes_of(&scene);
+    let summary: Vec<(Action, [usize; 2])> = boxes.iter().map(|b| (b.action, b.frames)).collect();
+    assert_eq!(
+        summary,
+        [(Action::Sit, [0, 30]), (Action::Sit, [40, 50]), (Action::Touch, [60, 70]), (Action::Touch, [80, 90])]
+    );
+    // The merged box holds both sittings' boxes: 10 cm wider than one, as deep, at the seat.
+    let mut alone = room();
+    alone.humans.push(one(seat(2.0), Action::Sit, "h0"));
+    let single = Conditions::contact_boxes_of(&alone)[0].obox;
+    let both = boxes[0].obox;
+    assert!((both.size.x - single.size.x - 0.1).abs() < 1e-6, "{} vs {}", both.size.x, single.size.x);
+    assert!((both.size.y - single.size.y).abs() < 1e-6 && (both.size.z - single.size.z).abs() < 1e-6);
+    assert!((both.center.x - single.center.x - 0.05).abs() < 1e-6 && (both.center.z - single.center.z).abs() < 1e-6);
+}
+
+#[test]
 fn touch_box_is_a_cube_on_the_palm() {
     let body = Body::default();
     let mut scene = room();
