@@ -566,11 +566,20 @@ fn bad_motion_files_are_one_line_and_exit_2() {
 
 #[test]
 fn labels_agree_with_the_hand_built_and_example_motions() {
+    // The visitors of two hand-built inputs were labelled by the labeller itself, as an import
+    // labels a capture (examples/hand_built_inputs.rs, `visitor`): they cannot test it.
+    let labelled_by_the_labeller = [("sofa_visit", "guest"), ("reading_chair_visit", "reader")];
     let mut per_action = std::collections::BTreeMap::<Action, (usize, usize)>::new();
+    let mut left_out = 0;
     for folder in ["scenes/examples", "tests/inputs"] {
         for file in super::json_files(folder) {
             let scene = Scene::load(&file).unwrap();
+            let name = file.file_stem().unwrap().to_string_lossy().into_owned();
             for h in &scene.humans {
+                if labelled_by_the_labeller.contains(&(name.as_str(), h.id.as_str())) {
+                    left_out += 1;
+                    continue;
+                }
                 let frames = body_frames(h).unwrap();
                 let labels = label_frames(&frames, h.fps, measured_stature(&frames), &Default::default());
                 for s in &h.actions {
@@ -581,6 +590,7 @@ fn labels_agree_with_the_hand_built_and_example_motions() {
             }
         }
     }
+    assert_eq!(left_out, labelled_by_the_labeller.len(), "the list names people the inputs have");
     let (right, all) = per_action.values().fold((0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
     assert!(right as f64 >= 0.95 * all as f64, "{right} of {all}: {per_action:?}");
     for (action, (right, all)) in &per_action {
