@@ -58,7 +58,7 @@ pub struct ImportMotionArgs {
     /// Keep only the file's seconds FROM to TO (`FROM:` to its end); once per motion, in order.
     /// The written clip starts at FROM: its frames and times, in messages and --actions, count
     /// from there.
-    #[arg(long, value_name = "FROM:TO")]
+    #[arg(long, value_name = "FROM:TO", allow_hyphen_values = true)]
     pub trim: Vec<String>,
 }
 

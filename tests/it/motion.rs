@@ -116,6 +116,7 @@ fn a_trim_outside_the_clip_is_one_line_and_exit_2() {
         ("3:4", "--trim 3:4: starts after the clip's end (2.27 s)"),
         ("2:1", "--trim 2:1: expected FROM:TO seconds with 0 ≤ FROM < TO"),
         ("half", "--trim half: expected FROM:TO or FROM: (seconds)"),
+        ("-1:2", "--trim -1:2: expected FROM:TO seconds with 0 ≤ FROM < TO"),
     ] {
         let args = ["--room", "bedroom", "--floor", "6x6", "--place", "3,1,0", "--trim", trim, "--out"];
         let o = shade_sim(&[&["import-motion", file.to_str().unwrap()][..], &args, &[out.to_str().unwrap()]].concat());
