@@ -190,14 +190,7 @@ fn scene_of(py: Python<'_>, source: &Bound<'_, PyAny>) -> PyResult<Arc<Scene>> {
         return Ok(scene.get().scene.clone());
     }
     if source.is_instance_of::<PyDict>() {
-        // numpy arrays and scalars (frames from a body model, say) are written as their lists.
-        let kwargs = PyDict::new(py);
-        kwargs.set_item("default", py.import("operator")?.getattr("methodcaller")?.call1(("tolist",))?)?;
-        let text: String = py
-            .import("json")?
-            .call_method("dumps", (source,), Some(&kwargs))
-            .map_err(|e| SceneError::new_err(format!("<dict>: not JSON data: {e}")))?
-            .extract()?;
+        let text = json_of(py, source).map_err(|e| SceneError::new_err(format!("<dict>: not JSON data: {e}")))?;
         return Scene::from_json(&text, Path::new("<dict>")).map(Arc::new).map_err(scene_error);
     }
     if source.is_instance_of::<PyString>() || source.hasattr("__fspath__")? {
@@ -206,6 +199,14 @@ fn scene_of(py: Python<'_>, source: &Bound<'_, PyAny>) -> PyResult<Arc<Scene>> {
     }
     let kind = source.get_type().name()?;
     Err(PyValueError::new_err(format!("expected a Scene, a path or a dict, not {kind}")))
+}
+
+/// `value` as JSON text, numpy arrays and scalars (frames from a body model, say) written as
+/// their lists.
+fn json_of(py: Python<'_>, value: &Bound<'_, PyAny>) -> PyResult<String> {
+    let kwargs = PyDict::new(py);
+    kwargs.set_item("default", py.import("operator")?.getattr("methodcaller")?.call1(("tolist",))?)?;
+    py.import("json")?.call_method("dumps", (value,), Some(&kwargs))?.extract()
 }
 
 /// Reads and validates a scene from a path (str or os.PathLike) or a dict of the file format.
@@ -523,8 +524,10 @@ fn import_motion<'py>(
 /// One motion's `actions=` entry: a list of `{"action": "sit", "start": 30, "end": 90}` (frames as
 /// written), read as `--actions` reads its file.
 fn spans_of(py: Python<'_>, spans: &Bound<'_, PyAny>) -> PyResult<Vec<ActionSpan>> {
-    let text: String = py.import("json")?.call_method1("dumps", (spans,))?.extract()?;
-    serde_json::from_str(&text).map_err(|e| PyValueError::new_err(format!("actions: not a list of action spans: {e}")))
+    let not_spans =
+        |e: &dyn std::fmt::Display| PyValueError::new_err(format!("actions: not a list of action spans: {e}"));
+    let text: String = json_of(py, spans).map_err(|e| not_spans(&e))?;
+    serde_json::from_str(&text).map_err(|e| not_spans(&e))
 }
 
 /// `floor=`: (W, D), a list of (x, y) corners, or a scene whose floor plan is taken.
@@ -543,10 +546,10 @@ fn floor_plan_of(py: Python<'_>, floor: &Bound<'_, PyAny>, height: f64) -> PyRes
     if let Ok(polygon) = floor.extract::<Vec<[f64; 2]>>() {
         return Ok(FloorPlan { polygon, height });
     }
-    scene_of(py, floor).map(|scene| scene.floor_plan.clone()).map_err(|_| {
-        PyValueError::new_err(
-            "floor: expected (W, D) in metres, a list of (x, y) corners, or a scene (Scene, path or dict)",
-        )
+    scene_of(py, floor).map(|scene| scene.floor_plan.clone()).map_err(|e| {
+        PyValueError::new_err(format!(
+            "floor: expected (W, D) in metres, a list of (x, y) corners, or a scene (Scene, path or dict): {e}"
+        ))
     })
 }
 

@@ -77,7 +77,7 @@ def test_an_imported_array_is_furnished_checked_and_exported_from_python(root):
     walk = shade_sim.import_motion([clip(root, "freebvh_walk.bvh")], "bedroom", (4, 4), place=[(1, 1, 0)])
     frames = walk.frames(0)
     names = walk.to_dict()["humans"][0]["skeleton"]["joints"]
-    spans = [{"action": "stand", "start": 0, "end": 10}]
+    spans = [{"action": "stand", "start": 0, "end": np.int64(10)}]  # numpy numbers as Python's
     again = shade_sim.import_motion(
         [{"joints": frames, "names": names, "fps": 30}], "bedroom", walk, actions=[spans]
     )

@@ -106,15 +106,19 @@ impl Trim {
     /// The frames of a clip at `fps` with `frames` frames that lie in `[from, to]` seconds, or why
     /// there are none.
     pub fn frames(&self, frames: usize, fps: f64) -> Result<std::ops::Range<usize>, String> {
-        let end = (frames.max(1) - 1) as f64 / fps;
-        let to = self.to.unwrap_or(end);
+        if frames == 0 {
+            return Err("the clip has no frames to trim".into());
+        }
+        let end = (frames - 1) as f64 / fps;
         let shown = || match self.to {
             Some(to) => format!("--trim {}:{}", self.from, to),
             None => format!("--trim {}:", self.from),
         };
-        if !(self.from.is_finite() && to.is_finite() && self.from >= 0.0 && self.from < to) {
+        let ordered = self.to.is_none_or(|to| to.is_finite() && self.from < to);
+        if !(self.from.is_finite() && self.from >= 0.0 && ordered) {
             return Err(format!("{}: expected FROM:TO seconds with 0 ≤ FROM < TO", shown()));
         }
+        let to = self.to.unwrap_or(end);
         if self.from > end {
             return Err(format!("{}: starts after the clip's end ({end:.2} s)", shown()));
         }
@@ -287,7 +291,8 @@ pub fn import_clip(clip: &Clip, i: usize, opts: &ImportOptions) -> Result<(Human
     let clip = match opts.trims.get(i).copied().flatten() {
         Some(trim) => {
             let kept = trim.frames(clip.frames.len(), clip.fps)?;
-            trimmed = Clip { frames: clip.frames[kept].to_vec(), ..clip.clone() };
+            let frames = clip.frames[kept].to_vec();
+            trimmed = Clip { names: clip.names.clone(), parents: clip.parents.clone(), fps: clip.fps, frames };
             &trimmed
         }
         None => clip,
@@ -409,4 +414,24 @@ fn resample(frames: &[[DVec3; 19]], from: f64, to: f64) -> Vec<[DVec3; 19]> {
             Pose(frames[a]).lerp(&Pose(frames[b]), w).0
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Trim;
+
+    #[test]
+    fn a_trim_keeps_the_frames_between_its_seconds_both_included() {
+        let trim = |from, to| Trim { from, to };
+        // 91 frames at 30 fps: 0 to 3 s.
+        assert_eq!(trim(1.0, Some(2.0)).frames(91, 30.0), Ok(30..61));
+        assert_eq!(trim(2.5, None).frames(91, 30.0), Ok(75..91));
+        assert_eq!(trim(0.0, Some(10.0)).frames(91, 30.0), Ok(0..91));
+        // A frame time written to 6 digits (0.033333 s) still lands on its frame.
+        assert_eq!(trim(1.0, Some(2.0)).frames(91, 1.0 / 0.033333), Ok(30..61));
+        assert!(trim(3.5, None).frames(91, 30.0).unwrap_err().contains("starts after the clip's end (3.00 s)"));
+        assert!(trim(2.0, Some(1.0)).frames(91, 30.0).unwrap_err().contains("0 ≤ FROM < TO"));
+        assert!(trim(f64::NAN, None).frames(91, 30.0).is_err());
+        assert!(trim(0.0, Some(1.0)).frames(0, 30.0).unwrap_err().contains("no frames"));
+    }
 }
