@@ -12,15 +12,16 @@
 //! This is the only module of the library that joins `generator`, `repair` and `sim`; it adds no
 //! behaviour of its own beyond the resampling loop, and a tally of what each input's rejected
 //! layouts hit ([`Rejections`]), so that an input without a clean layout is told why. For the
-//! import of motion ([`crate::motion`]) it has the check's refusal of a body in a wall
-//! ([`body_in_a_wall`]), which the command line and Python share.
+//! import of motion ([`crate::motion`]) it has [`import_placed`], which the command line and
+//! Python share: the search for a placement that keeps a clip inside the room ([`place_to_fit`])
+//! and the check's refusal of a body in a wall.
 
 use crate::generator::{GenError, Generator, GuidanceConfig};
 use crate::human::ContactBox;
-use crate::motion::MotionError;
+use crate::motion::{Clip, ImportOptions, ImportReport, MotionError, Placement, import_clip, import_clips};
 use crate::physics::Physics;
 use crate::repair::{RepairConfig, RepairReport, repair_scene};
-use crate::scene::{RoomType, Scene};
+use crate::scene::{FloorPlan, RoomType, Scene};
 use crate::sim::{CheckConfig, CheckReport, SimPhysics, Violation, ViolationKind, check_scene, people_in_walls};
 use rayon::prelude::*;
 use std::borrow::Borrow;
@@ -196,12 +197,43 @@ pub fn people_in_walls_message(walls: &[Violation]) -> Option<String> {
     ))
 }
 
+/// An input made from motion: the scene, what the import found in each clip, and where each clip
+/// was placed (`None`: kept where captured).
+#[derive(Debug, Clone)]
+pub struct Imported {
+    /// The generation input.
+    pub scene: Scene,
+    /// One per clip, in order.
+    pub reports: Vec<ImportReport>,
+    /// The placement each clip got, given or found.
+    pub places: Vec<Option<Placement>>,
+}
+
+/// The import of motion as `import-motion` and Python's `import_motion` make it: clip `i` placed
+/// by [`place_to_fit`] where `auto[i]`, then `motion::import_clips`, then the refusal of a body in
+/// a wall ([`body_in_a_wall`]).
+pub fn import_placed(clips: &[(PathBuf, Clip)], opts: &ImportOptions, auto: &[bool]) -> Result<Imported, MotionError> {
+    let mut opts = opts.clone();
+    for (i, (file, clip)) in clips.iter().enumerate().filter(|(i, _)| auto.get(*i) == Some(&true)) {
+        let found = place_to_fit(clip, i, &opts).map_err(|m| MotionError::invalid(file, m))?;
+        opts.places.resize(opts.places.len().max(i + 1), None);
+        opts.places[i] = Some(found);
+    }
+    let (scene, reports) = import_clips(clips, &opts)?;
+    let files: Vec<PathBuf> = clips.iter().map(|(file, _)| file.clone()).collect();
+    if let Some(error) = body_in_a_wall(&scene, &files, opts.fps) {
+        return Err(error);
+    }
+    let places = (0..clips.len()).map(|i| opts.places.get(i).copied().flatten()).collect();
+    Ok(Imported { scene, reports, places })
+}
+
 /// The deepest place where a body of an imported `scene` reaches into a wall, as `check` finds
 /// it, as an error naming its file (`files[k]` made human k): the frame, its time, the bone, the
 /// depth and the floor-plan edge. Such an input fails `check` whatever the layout, although the
 /// pelvis and ankles that `motion::import_clip` tests are inside the floor (an arm swung out, a
 /// shoulder along the wall).
-pub fn body_in_a_wall(scene: &Scene, files: &[PathBuf], fps: f64) -> Option<MotionError> {
+fn body_in_a_wall(scene: &Scene, files: &[PathBuf], fps: f64) -> Option<MotionError> {
     let walls = people_in_walls(scene, &CheckConfig::default());
     let v = walls.iter().max_by(|a, b| a.depth.total_cmp(&b.depth))?;
     let human = scene.humans.iter().position(|h| Some(&h.id) == v.human.as_ref()).unwrap_or(0);
@@ -215,6 +247,47 @@ pub fn body_in_a_wall(scene: &Scene, files: &[PathBuf], fps: f64) -> Option<Moti
             frame as f64 / fps,
             v.depth
         ),
+    ))
+}
+
+/// The placements [`place_to_fit`] tries, in order: the clip's first pelvis over the centre of the
+/// floor plan's bounding box, then over the points of a 5 × 5 grid at 10 %, 30 %, … 90 % of the box
+/// that lie inside the plan, nearest the centre first; at each, facing +y, −x, −y and +x.
+pub fn fitting_placements(floor: &FloorPlan) -> Vec<Placement> {
+    let polygon = floor.polygon();
+    let (lo, hi) = polygon.bounds();
+    let centre = (lo + hi) * 0.5;
+    let mut spots: Vec<glam::DVec2> = (0..5)
+        .flat_map(|i| (0..5).map(move |j| (i, j)))
+        .map(|(i, j)| lo + (hi - lo) * glam::DVec2::new(0.1 + 0.2 * i as f64, 0.1 + 0.2 * j as f64))
+        .filter(|&p| polygon.contains(p))
+        .collect();
+    spots.sort_by(|a, b| a.distance(centre).total_cmp(&b.distance(centre)));
+    std::iter::once(centre)
+        .filter(|&c| polygon.contains(c))
+        .chain(spots)
+        .flat_map(|at| [0.0, 90.0, 180.0, 270.0].map(|yaw_degrees| Placement { at, yaw_degrees }))
+        .collect()
+}
+
+/// The first of [`fitting_placements`] at which clip `i` (imported with `opts`, its own placement
+/// replaced) stays inside the floor plan at every frame and its body out of the walls, as `check`
+/// tests them; the error says none does.
+pub fn place_to_fit(clip: &Clip, i: usize, opts: &ImportOptions) -> Result<Placement, String> {
+    let candidates = fitting_placements(&opts.floor);
+    let mut tried = opts.clone();
+    tried.places.resize(tried.places.len().max(i + 1), None);
+    for &place in &candidates {
+        tried.places[i] = Some(place);
+        let Ok((human, _)) = import_clip(clip, i, &tried) else { continue };
+        let alone = Scene { humans: vec![human], ..Scene::new(opts.room_type, opts.floor.clone()) };
+        if people_in_walls(&alone, &CheckConfig::default()).is_empty() {
+            return Ok(place);
+        }
+    }
+    Err(format!(
+        "no placement keeps the clip inside the floor plan and out of its walls ({} tried: the plan's centre and a 5 × 5 grid, each facing four ways); a larger --floor, or --trim",
+        candidates.len()
     ))
 }
 
@@ -396,5 +469,25 @@ mod tests {
             "no clean layout in 3 samples; most often: h1's bones in a wardrobe (2 of 3), h0's bones in a wall (1 of 3), \
              a nightstand in a wall (1 of 3)"
         );
+    }
+
+    #[test]
+    fn placements_to_try_start_at_the_centre_and_stay_inside_the_plan() {
+        use crate::scene::FloorPlan;
+        let rect = FloorPlan { polygon: vec![[0.0, 0.0], [4.0, 0.0], [4.0, 2.0], [0.0, 2.0]], height: 2.8 };
+        let tried = fitting_placements(&rect);
+        assert_eq!(tried.len(), 4 * (1 + 25));
+        let first: Vec<(f64, f64, f64)> = tried[..5].iter().map(|p| (p.at.x, p.at.y, p.yaw_degrees)).collect();
+        assert_eq!(first[..4], [(2.0, 1.0, 0.0), (2.0, 1.0, 90.0), (2.0, 1.0, 180.0), (2.0, 1.0, 270.0)]);
+        // Then the grid, nearest the centre first: (2.0, 1.0) again is the grid's middle point.
+        assert_eq!((first[4].0, first[4].1), (2.0, 1.0));
+        // An L whose bounding box's centre is outside it: only points inside are tried.
+        let l = FloorPlan {
+            polygon: vec![[0.0, 0.0], [4.0, 0.0], [4.0, 1.0], [1.0, 1.0], [1.0, 4.0], [0.0, 4.0]],
+            height: 2.8,
+        };
+        let tried = fitting_placements(&l);
+        assert!(tried.iter().all(|p| l.polygon().contains(p.at)));
+        assert_eq!(tried.len(), 4 * 9, "the grid's first column and row: 5 + 5 − 1 points");
     }
 }

@@ -82,7 +82,7 @@ def import_motion(
     room: str,
     floor: Any,
     *,
-    place: Optional[Sequence[Optional[Tuple[float, float, float]]]] = None,
+    place: Optional[Sequence[Union[None, str, Tuple[float, float, float]]]] = None,
     trim: Optional[Sequence[Optional[Tuple[float, Optional[float]]]]] = None,
     fps: float = 30.0,
     stature: Optional[float] = None,
@@ -104,7 +104,9 @@ def import_motion(
 
     ``floor``: (W, D) metres from the origin, a list of (x, y) corners, or a scene whose floor
     plan is taken (``height``: the ceiling of the first two). ``place``: per motion, None (kept
-    where captured) or (x, y, yaw_deg) for its first pelvis and facing. ``trim``: per motion,
+    where captured), (x, y, yaw_deg) for its first pelvis and facing, or "auto" (the first of the
+    plan's centre and a 5 x 5 grid, each facing four ways, that keeps the motion inside the plan
+    and out of its walls). ``trim``: per motion,
     None or (from, to) seconds of the motion, to None for its end. ``actions``: per motion, None or
     a list of ``{"action": "sit", "start": 30, "end": 90}`` (frames as written) that replace the
     automatic labels where they lie. A motion that cannot be read,

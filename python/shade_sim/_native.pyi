@@ -73,7 +73,7 @@ def import_motion(
     motions: List[Union[str, os.PathLike, bytes]],
     room: str,
     floor: Any,
-    place: Optional[List[Optional[Tuple[float, float, float]]]] = None,
+    place: Optional[List[Union[None, str, Tuple[float, float, float]]]] = None,
     trim: Optional[List[Optional[Tuple[float, Optional[float]]]]] = None,
     fps: float = 30.0,
     stature: Optional[float] = None,

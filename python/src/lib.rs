@@ -11,7 +11,7 @@
 //!
 //! It adds no behaviour of its own: generation is `pipeline::make_layouts`, the check is
 //! `sim::check_scene`, the exports are `export::scene_mjcf` and `export::mocap_motion`, the import
-//! of motion is `motion::import_clips`.
+//! of motion is `pipeline::import_placed`.
 
 use glam::DVec2;
 use numpy::{PyArray2, PyArray3};
@@ -21,9 +21,9 @@ use pyo3::types::{PyBytes, PyDict, PyList, PyString, PyTuple};
 use shade_sim::export::{MjcfOptions, mocap_motion, robot_spot, scene_mjcf};
 use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig};
 use shade_sim::human::people_meeting;
-use shade_sim::motion::{ImportOptions, Placement, Trim, Units, UpAxis, import_clips, npy::read_npz, read_motion};
+use shade_sim::motion::{ImportOptions, Placement, Trim, Units, UpAxis, npy::read_npz, read_motion};
 use shade_sim::pipeline::{
-    LayoutOptions, body_in_a_wall, make_grouped_layouts, people_in_walls_message, rejections_message, room_groups,
+    LayoutOptions, import_placed, make_grouped_layouts, people_in_walls_message, rejections_message, room_groups,
     unseen_contacts_message,
 };
 use shade_sim::repair::RepairConfig;
@@ -407,7 +407,9 @@ type TrimArg = (f64, Option<f64>);
 /// arrays). `floor`: (W, D) m from the origin, a list of (x, y) corners, or a scene (Scene, path,
 /// dict) whose floor plan is taken; `height` is the ceiling of the first two. `place`, `trim` and
 /// `actions` give one entry (or None) per motion, in order: (x, y, yaw_deg), (from, to) seconds
-/// with to None for the end, and spans whose action is given rather than labelled.
+/// with to None for the end, and spans whose action is given rather than labelled; a place of
+/// "auto" is the first of the plan's centre and a 5 × 5 grid, each facing four ways, that keeps the
+/// clip inside the plan and out of its walls (`pipeline::import_placed`).
 #[pyfunction]
 #[pyo3(signature = (motions, room, floor, place=None, trim=None, fps=30.0, stature=None, units="auto", up="auto", source_fps=30.0, height=2.8, actions=None))]
 #[allow(clippy::too_many_arguments)]
@@ -416,7 +418,7 @@ fn import_motion<'py>(
     motions: Vec<Bound<'py, PyAny>>,
     room: &str,
     floor: &Bound<'py, PyAny>,
-    place: Option<Vec<Option<(f64, f64, f64)>>>,
+    place: Option<Vec<Option<Bound<'py, PyAny>>>>,
     trim: Option<Vec<Option<TrimArg>>>,
     fps: f64,
     stature: Option<f64>,
@@ -444,8 +446,26 @@ fn import_motion<'py>(
         return Err(PyValueError::new_err(format!("stature: must be 0.5 to 2.5 m, not {s}")));
     }
     let mut opts = ImportOptions::new(room, floor_plan_of(py, floor, height)?);
-    opts.places =
-        place.into_iter().map(|p| p.map(|(x, y, yaw)| Placement { at: DVec2::new(x, y), yaw_degrees: yaw })).collect();
+    // Each entry: None (kept where captured), "auto" (found by `place_to_fit`) or (x, y, yaw_deg).
+    let mut auto = vec![false; place.len()];
+    opts.places = Vec::with_capacity(place.len());
+    for (k, p) in place.iter().enumerate() {
+        let Some(p) = p else {
+            opts.places.push(None);
+            continue;
+        };
+        if p.extract::<String>().is_ok_and(|s| s == "auto") {
+            auto[k] = true;
+            opts.places.push(None);
+            continue;
+        }
+        let (x, y, yaw) = p
+            .extract::<(f64, f64, f64)>()
+            .ok()
+            .filter(|v| [v.0, v.1, v.2].iter().all(|x| x.is_finite()))
+            .ok_or_else(|| PyValueError::new_err("place: each entry is None, \"auto\" or (x, y, yaw_deg)"))?;
+        opts.places.push(Some(Placement { at: DVec2::new(x, y), yaw_degrees: yaw }));
+    }
     opts.trims = trim.into_iter().map(|t| t.map(|(from, to)| Trim { from, to })).collect();
     opts.actions = actions
         .iter()
@@ -497,12 +517,7 @@ fn import_motion<'py>(
                 }
             })
             .collect::<Result<Vec<_>, _>>()?;
-        let (scene, reports) = import_clips(&clips, &opts)?;
-        let files: Vec<PathBuf> = clips.into_iter().map(|(file, _)| file).collect();
-        match body_in_a_wall(&scene, &files, opts.fps) {
-            Some(error) => Err(error),
-            None => Ok((scene, reports)),
-        }
+        import_placed(&clips, &opts, &auto).map(|imported| (imported.scene, imported.reports))
     })?
     .map_err(|e| MotionError::new_err(e.to_string()))?;
     // As the command line's warnings.

@@ -89,3 +89,16 @@ def test_an_imported_array_is_furnished_checked_and_exported_from_python(root):
     assert "<mujoco" in mjcf and 'body name="h0_pelvis-spine" mocap="true"' in mjcf
     with pytest.raises(ValueError, match="actions: not a list of action spans"):
         shade_sim.import_motion([clip(root, "freebvh_walk.bvh")], "bedroom", (4, 4), place=[(1, 1, 0)], actions=[[{"start": 0}]])
+
+
+def test_place_auto_puts_the_motion_where_it_fits_as_the_command_line_does(cli, root, tmp_path):
+    cmu = clip(root, "cmu_01_01.bvh")
+    out = tmp_path / "auto.json"
+    args = ["import-motion", cmu, "--room", "living", "--floor", "5x4", "--place", "auto", "--out", str(out)]
+    subprocess.run([cli, "-q", *args], check=True)
+    scene = shade_sim.import_motion([cmu], "living", (5, 4), place=["auto"])
+    assert scene.to_json() == shade_sim.load_scene(str(out)).to_json()
+    with pytest.raises(shade_sim.MotionError, match="no placement keeps the clip inside"):
+        shade_sim.import_motion([cmu], "living", (2, 2), place=["auto"])
+    with pytest.raises(ValueError, match="place: each entry"):
+        shade_sim.import_motion([cmu], "living", (5, 4), place=["centre"])

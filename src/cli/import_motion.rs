@@ -7,8 +7,8 @@ use anyhow::{Context, bail};
 use clap::{Args, ValueEnum};
 use glam::DVec2;
 use shade_sim::human::people_meeting;
-use shade_sim::motion::{ImportOptions, Placement, Trim, Units, UpAxis, import_motion};
-use shade_sim::pipeline::body_in_a_wall;
+use shade_sim::motion::{ImportOptions, MotionError, Placement, Trim, Units, UpAxis, read_motion};
+use shade_sim::pipeline::{Imported, import_placed};
 use shade_sim::scene::{ActionSpan, FloorPlan};
 use shade_sim::sim::CheckConfig;
 use std::path::{Path, PathBuf};
@@ -28,9 +28,11 @@ pub struct ImportMotionArgs {
     /// The input to write (shade-scene/1, no objects).
     #[arg(long)]
     pub out: PathBuf,
-    /// Put a clip's start at X,Y (m) facing YAW_DEG (0 faces +y); once per motion, in order.
-    /// Without it, a clip keeps its own coordinates.
-    #[arg(long, value_name = "X,Y,YAW_DEG", allow_negative_numbers = true)]
+    /// Put a clip's start at X,Y (m) facing YAW_DEG (0 faces +y), or `auto`: the first of the
+    /// plan's centre and a 5 × 5 grid, each facing four ways, that keeps the clip inside the floor
+    /// plan and out of its walls; once per motion, in order. Without it, a clip keeps its own
+    /// coordinates.
+    #[arg(long, value_name = "X,Y,YAW_DEG|auto", allow_negative_numbers = true)]
     pub place: Vec<String>,
     /// Frames per second of the humans written.
     #[arg(long, default_value_t = 30.0)]
@@ -94,11 +96,17 @@ fn floor_of(arg: &str, height: f64) -> anyhow::Result<FloorPlan> {
     serde_json::from_value(plan).with_context(|| format!("{arg}: not a floor plan (`polygon` and `height`)"))
 }
 
-fn placement(arg: &str) -> anyhow::Result<Placement> {
+/// `--place X,Y,YAW_DEG` (`Some`), or `--place auto` (`None`: found by `place_to_fit`).
+fn placement(arg: &str) -> anyhow::Result<Option<Placement>> {
+    if arg.trim() == "auto" {
+        return Ok(None);
+    }
     let v: Vec<f64> = arg.split(',').map(|s| s.trim().parse::<f64>()).collect::<Result<_, _>>().unwrap_or_default();
     match v[..] {
-        [x, y, yaw] if v.iter().all(|x| x.is_finite()) => Ok(Placement { at: DVec2::new(x, y), yaw_degrees: yaw }),
-        _ => bail!("--place {arg}: expected X,Y,YAW_DEG (three numbers)"),
+        [x, y, yaw] if v.iter().all(|x| x.is_finite()) => {
+            Ok(Some(Placement { at: DVec2::new(x, y), yaw_degrees: yaw }))
+        }
+        _ => bail!("--place {arg}: expected X,Y,YAW_DEG (three numbers) or auto"),
     }
 }
 
@@ -131,7 +139,8 @@ pub fn run(args: &ImportMotionArgs, global: &GlobalArgs) -> anyhow::Result<ExitS
         bail!("--stature: must be 0.5 to 2.5 m, not {s}");
     }
     let mut opts = ImportOptions::new(args.room.into(), floor_of(&args.floor, args.height)?);
-    opts.places = args.place.iter().map(|p| placement(p).map(Some)).collect::<anyhow::Result<_>>()?;
+    opts.places = args.place.iter().map(|p| placement(p)).collect::<anyhow::Result<_>>()?;
+    let auto: Vec<bool> = args.place.iter().map(|p| p.trim() == "auto").collect();
     opts.actions = args.actions.iter().map(|f| spans(f)).collect::<anyhow::Result<_>>()?;
     opts.trims = args.trim.iter().map(|t| trim(t).map(Some)).collect::<anyhow::Result<_>>()?;
     opts.fps = args.fps;
@@ -152,10 +161,12 @@ pub fn run(args: &ImportMotionArgs, global: &GlobalArgs) -> anyhow::Result<ExitS
     if args.motions.iter().any(|m| same_file(m, &args.out)) {
         bail!("{}: --out is one of the motion files; it would be overwritten", args.out.display());
     }
-    let (scene, reports) = import_motion(&args.motions, &opts)?;
-    if let Some(error) = body_in_a_wall(&scene, &args.motions, opts.fps) {
-        return Err(error.into());
-    }
+    let clips = args
+        .motions
+        .iter()
+        .map(|file| Ok((file.clone(), read_motion(file, opts.source_fps)?)))
+        .collect::<Result<Vec<_>, MotionError>>()?;
+    let Imported { scene, reports, places } = import_placed(&clips, &opts, &auto)?;
     scene.save(&args.out)?;
     for r in reports.iter().filter(|r| !r.ever_upright) {
         tracing::warn!(
@@ -168,13 +179,15 @@ pub fn run(args: &ImportMotionArgs, global: &GlobalArgs) -> anyhow::Result<ExitS
     for m in &meetings {
         tracing::warn!("{}: {m}; put their clips apart (--place)", args.out.display());
     }
+    let place_of = |i: usize| places[i].map(|p| [p.at.x, p.at.y, p.yaw_degrees]);
     if global.json {
         let rows: Vec<serde_json::Value> = reports
             .iter()
             .zip(&scene.humans)
-            .map(|(r, h)| {
+            .enumerate()
+            .map(|(i, (r, h))| {
                 serde_json::json!({
-                    "file": r.file, "human": h.id, "rig": r.rig, "metres_per_unit": r.scale, "y_up": r.y_up,
+                    "file": r.file, "human": h.id, "place": place_of(i), "rig": r.rig, "metres_per_unit": r.scale, "y_up": r.y_up,
                     "stature": r.stature, "frames_read": r.frames.0, "frames_written": r.frames.1, "actions": r.actions,
                     "ever_upright": r.ever_upright,
                 })
@@ -183,11 +196,17 @@ pub fn run(args: &ImportMotionArgs, global: &GlobalArgs) -> anyhow::Result<ExitS
         print_json(&serde_json::json!({ "out": args.out, "humans": rows, "people_meeting": meetings }))?;
     } else if global.quiet == 0 {
         let mut text = String::new();
-        for (r, h) in reports.iter().zip(&scene.humans) {
+        for (i, (r, h)) in reports.iter().zip(&scene.humans).enumerate() {
             let spans: Vec<String> =
                 r.actions.iter().map(|s| format!("{} {}–{}", s.action.name(), s.start, s.end)).collect();
+            let placed = match (auto.get(i), places[i]) {
+                (Some(true), Some(p)) => {
+                    format!(", placed at ({:.2}, {:.2}) facing {}°", p.at.x, p.at.y, p.yaw_degrees)
+                }
+                _ => String::new(),
+            };
             text += &format!(
-                "{} → {}: {} rig, {} m per unit, {}-up, {:.2} m tall, {} → {} frames at {} fps; {}\n",
+                "{} → {}{placed}: {} rig, {} m per unit, {}-up, {:.2} m tall, {} → {} frames at {} fps; {}\n",
                 r.file.display(),
                 h.id,
                 r.rig,

@@ -8,7 +8,7 @@
 //! ([`labels`]); a pelvis or ankle that leaves the floor plan is an error naming the frame.
 //! [`import_clips`] does the same for clips already read (arrays handed over in memory). A body
 //! reaching into a wall is refused by the callers with the check's own test
-//! (`pipeline::body_in_a_wall`). It does not generate furniture, and it does not smooth or fix
+//! (`pipeline::import_placed`). It does not generate furniture, and it does not smooth or fix
 //! the motion beyond that.
 
 pub mod bvh;

@@ -108,6 +108,37 @@ fn a_trim_keeps_the_seconds_asked_for_and_the_written_clip_starts_there() {
 }
 
 #[test]
+fn place_auto_finds_where_a_clip_fits_and_says_so_when_none_does() {
+    // CMU 01_01 walks and jumps about 2 m: in a 5 × 4 m living room it does not fit at the centre
+    // facing any way (it reaches a wall), and auto finds a spot at the grid's edge; in 2 × 2 m
+    // nothing fits.
+    let dir = tempfile::tempdir().unwrap();
+    let file = clip("cmu_01_01.bvh");
+    let out = dir.path().join("auto.json");
+    let run = |floor: &str| {
+        let args = ["--room", "living", "--floor", floor, "--place", "auto", "--out", out.to_str().unwrap()];
+        shade_sim(&[&["--json", "import-motion", file.to_str().unwrap()][..], &args].concat())
+    };
+    let o = run("5x4");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let report: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let place: [f64; 3] = serde_json::from_value(report["humans"][0]["place"].clone()).unwrap();
+    assert_eq!(place, [0.5, 2.0, 270.0]);
+    let scene = Scene::load(&out).unwrap();
+    let first = body_frames(&scene.humans[0]).unwrap()[0][Joint::Pelvis.index()];
+    assert!(first.truncate().distance(DVec2::new(0.5, 2.0)) < 1e-3, "{first}");
+    let o = shade_sim(&["check", "--no-stability", out.to_str().unwrap()]);
+    assert!(o.status.success(), "in the room and out of its walls: {}", stdout(&o));
+    std::fs::remove_file(&out).unwrap();
+    let o = run("2x2");
+    assert_eq!(o.status.code(), Some(2));
+    let err = stderr(&o);
+    assert!(err.starts_with("error: ") && err.contains("cmu_01_01.bvh: no placement keeps the clip inside"), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(!out.exists());
+}
+
+#[test]
 fn a_trim_outside_the_clip_is_one_line_and_exit_2() {
     let dir = tempfile::tempdir().unwrap();
     let file = clip("freebvh_walk.bvh");
