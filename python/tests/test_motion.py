@@ -102,3 +102,13 @@ def test_place_auto_puts_the_motion_where_it_fits_as_the_command_line_does(cli, 
         shade_sim.import_motion([cmu], "living", (2, 2), place=["auto"])
     with pytest.raises(ValueError, match="place: each entry"):
         shade_sim.import_motion([cmu], "living", (5, 4), place=["centre"])
+
+
+def test_the_readme_s_python_lines_run_as_written(root, monkeypatch):
+    readme = open(os.path.join(root, "README.md"), encoding="utf-8").read()
+    block = readme.split("## Python", 1)[1].split("```python\n", 1)[1].split("```", 1)[0]
+    assert "shade_sim.import_motion(" in block
+    monkeypatch.chdir(root)
+    names = {}
+    exec(compile(block, "README.md", "exec"), names)
+    assert names["mjcf"].startswith("<mujoco") and shade_sim.check(names["layouts"][0]) == []
