@@ -8,8 +8,8 @@
 //! room, two walkers crossing a living room, a child on a 30 cm seat, a nap on the sofa, a living
 //! room scanned at 25° to the axes, people sitting and lying on the floor; people who walk in, sit
 //! down, get up and walk out again (on a sofa, and in a reading chair turned into a corner), their
-//! actions labelled from the motion as `import-motion` labels a capture; and one input no layout
-//! can make pass (a sitter's feet in the wall).
+//! actions labelled from the motion as `import-motion` labels a capture; and two inputs no layout
+//! can make pass (a sitter's feet in the wall; a walk through where the person's chair must stand).
 //!
 //! ```sh
 //! cargo run --release --example hand_built_inputs -- tests/inputs
@@ -373,6 +373,13 @@ fn main() -> anyhow::Result<()> {
                 rect(3.6, 3.4),
                 vec![visitor("reader", [0.5, 0.5], [3.0, 2.8], 0.44, 135.0), lier("sleeper", [0.95, 2.2], 0.48, 0.0)],
             ),
+        ),
+        // A reading chair in the middle of a bedroom, walked to from the door behind it, straight
+        // through where the chair must stand: no layout can pass the check (the warning
+        // `human::seats_in_the_way` names it).
+        (
+            "walk_through_the_chair",
+            scene(RoomType::Bedroom, rect(3.6, 4.6), vec![visitor("reader", [1.8, 0.5], [1.8, 2.3], 0.44, 0.0)]),
         ),
         // The person at the desk sits too close to the wall they face: their feet are in it, and
         // no layout can pass the check.

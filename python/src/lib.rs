@@ -20,7 +20,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyList, PyString, PyTuple};
 use shade_sim::export::{MjcfOptions, mocap_motion, robot_spot, scene_mjcf};
 use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig};
-use shade_sim::human::people_meeting;
+use shade_sim::human::{people_meeting, seats_in_the_way};
 use shade_sim::motion::{ImportOptions, Placement, Trim, Units, UpAxis, npy::read_npz, read_motion};
 use shade_sim::pipeline::{
     LayoutOptions, import_placed, make_grouped_layouts, people_in_walls_message, rejections_message, room_groups,
@@ -303,6 +303,9 @@ fn generate<'py>(
         for m in people_meeting(input, opts.check.tolerance) {
             user_warning(py, &format!("input {i}: {m}"))?;
         }
+        for s in seats_in_the_way(input, opts.check.tolerance) {
+            user_warning(py, &format!("input {i}: {s}"))?;
+        }
     }
     let mut per_input = layouts.kept.into_iter().map(|kept| kept.into_iter().map(|l| PyScene::new(l.scene)).collect());
     if many {
@@ -532,6 +535,9 @@ fn import_motion<'py>(
     }
     for m in people_meeting(&scene, CheckConfig::default().tolerance) {
         user_warning(py, &format!("{m}; put their clips apart (place=)"))?;
+    }
+    for s in seats_in_the_way(&scene, CheckConfig::default().tolerance) {
+        user_warning(py, &s.to_string())?;
     }
     Ok(PyScene::new(scene))
 }

@@ -112,3 +112,10 @@ def test_the_readme_s_python_lines_run_as_written(root, monkeypatch):
     names = {}
     exec(compile(block, "README.md", "exec"), names)
     assert names["mjcf"].startswith("<mujoco") and shade_sim.check(names["layouts"][0]) == []
+
+
+def test_a_walk_through_where_a_seat_must_stand_is_a_user_warning(root):
+    path = os.path.join(root, "tests", "inputs", "walk_through_the_chair.json")
+    with pytest.warns(UserWarning, match="reader's right_knee-right_ankle is 0.146 m into where reader sits"):
+        layouts = shade_sim.generate(path, guidance="none", repair=False)
+    assert len(layouts) == 1

@@ -9,7 +9,7 @@ use anyhow::Context;
 use clap::Args;
 use rayon::prelude::*;
 use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig, shipped_generator};
-use shade_sim::human::{Meeting, people_meeting};
+use shade_sim::human::{Meeting, SeatInTheWay, people_meeting, seats_in_the_way};
 use shade_sim::pipeline::{
     LayoutOptions, make_grouped_layouts, people_in_walls_message, rejections_message, room_groups,
     unseen_contacts_message,
@@ -248,6 +248,15 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
     for (file, found) in files.iter().zip(&meetings) {
         for m in found {
             tracing::warn!("{}: {m}", file.display());
+        }
+    }
+    // Someone walking or standing where a seat must be for someone else's sitting (or their own):
+    // no layout holds both (`human::seats_in_the_way`); said before sampling.
+    let in_the_way: Vec<Vec<SeatInTheWay>> =
+        inputs.par_iter().map(|s| seats_in_the_way(s, opts.check.tolerance)).collect();
+    for (file, found) in files.iter().zip(&in_the_way) {
+        for s in found {
+            tracing::warn!("{}: {s}", file.display());
         }
     }
     let bar = super::progress::bar(global, (inputs.len() * args.samples) as u64, "generate");

@@ -6,7 +6,7 @@ use super::{ExitStatus, GlobalArgs, RoomArg};
 use anyhow::{Context, bail};
 use clap::{Args, ValueEnum};
 use glam::DVec2;
-use shade_sim::human::people_meeting;
+use shade_sim::human::{people_meeting, seats_in_the_way};
 use shade_sim::motion::{ImportOptions, MotionError, Placement, Trim, Units, UpAxis, read_motion};
 use shade_sim::pipeline::{Imported, import_placed};
 use shade_sim::scene::{ActionSpan, FloorPlan};
@@ -178,6 +178,9 @@ pub fn run(args: &ImportMotionArgs, global: &GlobalArgs) -> anyhow::Result<ExitS
     let meetings = people_meeting(&scene, CheckConfig::default().tolerance);
     for m in &meetings {
         tracing::warn!("{}: {m}; put their clips apart (--place)", args.out.display());
+    }
+    for s in seats_in_the_way(&scene, CheckConfig::default().tolerance) {
+        tracing::warn!("{}: {s}", args.out.display());
     }
     let place_of = |i: usize| places[i].map(|p| [p.at.x, p.at.y, p.yaw_degrees]);
     if global.json {

@@ -9,6 +9,7 @@ mod gait;
 mod meetings;
 mod motion;
 mod pose;
+mod seats_in_the_way;
 mod skeleton;
 mod surface;
 
@@ -20,5 +21,6 @@ pub use gait::Gait;
 pub use meetings::{Meeting, meets_anyone, people_meeting};
 pub use motion::Motion;
 pub use pose::{BODY_BONES, KNEE_OVERHANG, Pose, SEAT_BONES, lie, sit, stand, stand_local, touch, two_bone_ik};
+pub use seats_in_the_way::{SeatInTheWay, seats_in_the_way};
 pub use skeleton::{Body, JOINT_NAMES, Joint, Side, round_mm};
 pub use surface::{SurfaceSampler, segment_distance_3d};

@@ -5,7 +5,7 @@
 use crate::{shade_sim, stderr};
 
 /// Each input and whether `generate --require-clean --seed 0` finds a layout `check` passes.
-const EXPECTED: [(&str, bool); 19] = [
+const EXPECTED: [(&str, bool); 20] = [
     ("bedroom_couple_walker_at_foot", true),
     ("bedroom_sleeper_desk_walker", true),
     ("child_on_a_low_seat", true),
@@ -23,6 +23,7 @@ const EXPECTED: [(&str, bool); 19] = [
     ("sofa_visit", true),
     ("three_on_a_sofa", true),
     ("tight_bedroom", true),
+    ("walk_through_the_chair", false),
     ("walker_behind_sitter", true),
     ("walker_through_middle", true),
 ];
@@ -98,4 +99,28 @@ fn no_hand_built_input_has_people_inside_each_other() {
         let found = shade_sim::human::people_meeting(&scene, shade_sim::sim::CheckConfig::default().tolerance);
         assert!(found.is_empty(), "{}: {found:?}", file.display());
     }
+}
+
+#[test]
+fn a_walk_through_where_the_chair_must_stand_is_named_before_sampling() {
+    // The reader walks from the door straight through where their reading chair must stand, and
+    // back: no layout holds both, and generate says so (`human::seats_in_the_way`).
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let run = shade_sim(&[
+        "--no-progress",
+        "generate",
+        "--input",
+        "tests/inputs/walk_through_the_chair.json",
+        "--out",
+        out.to_str().unwrap(),
+        "--no-repair",
+    ]);
+    assert_eq!(run.status.code(), Some(0), "{}", stderr(&run));
+    let err = stderr(&run);
+    assert!(
+        err.contains("reader's right_knee-right_ankle is 0.146 m into where reader sits at frames 60–102")
+            && err.contains("no layout holds both"),
+        "{err}"
+    );
 }

@@ -598,9 +598,10 @@ fn bad_motion_files_are_one_line_and_exit_2() {
 
 #[test]
 fn labels_agree_with_the_hand_built_and_example_motions() {
-    // The visitors of two hand-built inputs were labelled by the labeller itself, as an import
+    // The visitors of three hand-built inputs were labelled by the labeller itself, as an import
     // labels a capture (examples/hand_built_inputs.rs, `visitor`): they cannot test it.
-    let labelled_by_the_labeller = [("sofa_visit", "guest"), ("reading_chair_visit", "reader")];
+    let labelled_by_the_labeller =
+        [("sofa_visit", "guest"), ("reading_chair_visit", "reader"), ("walk_through_the_chair", "reader")];
     let mut per_action = std::collections::BTreeMap::<Action, (usize, usize)>::new();
     let mut left_out = 0;
     for folder in ["scenes/examples", "tests/inputs"] {
