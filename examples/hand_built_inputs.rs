@@ -27,7 +27,7 @@ use std::path::PathBuf;
 const FPS: f64 = 10.0;
 
 fn rect(w: f64, d: f64) -> FloorPlan {
-    FloorPlan { polygon: vec![[0.0, 0.0], [w, 0.0], [w, d], [0.0, d]], height: 2.6 }
+    FloorPlan::rectangle(w, d, 2.6)
 }
 
 /// Yaws are the scene format's: 0° faces +y, 90° faces −x (counter-clockwise from +y).

@@ -562,7 +562,7 @@ fn floor_plan_of(py: Python<'_>, floor: &Bound<'_, PyAny>, height: f64) -> PyRes
                 "floor: ({w}, {d}): the sides must be positive numbers of metres"
             )));
         }
-        return Ok(FloorPlan { polygon: vec![[0.0, 0.0], [w, 0.0], [w, d], [0.0, d]], height });
+        return Ok(FloorPlan::rectangle(w, d, height));
     }
     if let Ok(polygon) = floor.extract::<Vec<[f64; 2]>>() {
         return Ok(FloorPlan { polygon, height });

@@ -87,7 +87,7 @@ fn floor_of(arg: &str, height: f64) -> anyhow::Result<FloorPlan> {
         if !(w.is_finite() && d.is_finite() && w > 0.0 && d > 0.0 && height.is_finite() && height > 0.0) {
             bail!("--floor {arg}: the sides and --height must be positive numbers of metres");
         }
-        return Ok(FloorPlan { polygon: vec![[0.0, 0.0], [w, 0.0], [w, d], [0.0, d]], height });
+        return Ok(FloorPlan::rectangle(w, d, height));
     }
     let path = Path::new(arg);
     let text = std::fs::read_to_string(path).with_context(|| format!("{arg}: not WxD, and not a readable file"))?;

@@ -166,16 +166,11 @@ pub fn contact_boxes(human: &Human) -> Vec<ContactBox> {
 
 /// The least box in `a`'s frame (its yaw) that holds both `a` and `b`.
 fn union_in_frame_of(a: &OBox, b: &OBox) -> OBox {
-    let (sn, cs) = a.yaw.sin_cos();
-    let local = |p: DVec2| DVec2::new(cs * p.x + sn * p.y, -sn * p.x + cs * p.y);
-    let corners = a.footprint().into_iter().chain(b.footprint()).map(local);
-    let (lo, hi) = corners
-        .fold((DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)), |(lo, hi), p| (lo.min(p), hi.max(p)));
     let ((a0, a1), (b0, b1)) = (a.z_range(), b.z_range());
-    let (z0, z1) = (a0.min(b0), a1.max(b1));
-    let mid = (lo + hi) * 0.5;
-    let center = DVec2::new(cs * mid.x - sn * mid.y, sn * mid.x + cs * mid.y);
-    OBox::new(center.extend((z0 + z1) * 0.5), (hi - lo).extend(z1 - z0), a.yaw)
+    let corners = a.footprint().into_iter().chain(b.footprint());
+    let local = corners.flat_map(|p| [a.to_local(p.extend(a0.min(b0))), a.to_local(p.extend(a1.max(b1)))]);
+    let (lo, hi) = local.fold((DVec3::MAX, DVec3::MIN), |(lo, hi), p| (lo.min(p), hi.max(p)));
+    OBox::new(a.to_world((lo + hi) * 0.5), hi - lo, a.yaw)
 }
 
 fn span_frames(span: &ActionSpan) -> impl Iterator<Item = usize> {

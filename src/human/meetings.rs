@@ -82,10 +82,6 @@ fn meeting(a: &Human, b: &Human, tolerance: f64) -> Option<Meeting> {
     if !(held(a) || held(b)) {
         return None;
     }
-    let bone_name = |h: &Human, k: usize| {
-        let bone = &h.skeleton.bones[k];
-        format!("{}-{}", h.skeleton.joints[bone.a], h.skeleton.joints[bone.b])
-    };
     // Every frame of the one who moves against the other's held pose (a clip that has ended holds
     // its last frame).
     let mut deepest: Option<(f64, usize, [usize; 2])> = None;
@@ -102,7 +98,7 @@ fn meeting(a: &Human, b: &Human, tolerance: f64) -> Option<Meeting> {
     let (depth, frame, bones) = deepest?;
     Some(Meeting {
         humans: [a.id.clone(), b.id.clone()],
-        bones: [bone_name(a, bones[0]), bone_name(b, bones[1])],
+        bones: [a.skeleton.bone_name(bones[0]), b.skeleton.bone_name(bones[1])],
         frame,
         depth,
         frames_inside,

@@ -99,10 +99,9 @@ pub fn seats_in_the_way(scene: &Scene, tolerance: f64) -> Vec<SeatInTheWay> {
                 }
             }
             if let Some((depth, frame, k)) = deepest {
-                let bone = &h.skeleton.bones[k];
                 out.push(SeatInTheWay {
                     human: h.id.clone(),
-                    bone: format!("{}-{}", h.skeleton.joints[bone.a], h.skeleton.joints[bone.b]),
+                    bone: h.skeleton.bone_name(k),
                     frame,
                     depth,
                     frames_inside,

@@ -15,6 +15,11 @@ pub struct FloorPlan {
 }
 
 impl FloorPlan {
+    /// A `w` × `d` m rectangle with its corner at the origin, `height` m of ceiling.
+    pub fn rectangle(w: f64, d: f64, height: f64) -> FloorPlan {
+        FloorPlan { polygon: vec![[0.0, 0.0], [w, 0.0], [w, d], [0.0, d]], height }
+    }
+
     /// The floor polygon as a geometry value.
     pub fn polygon(&self) -> Polygon {
         Polygon::new(self.polygon.iter().map(|&p| DVec2::from(p)).collect())

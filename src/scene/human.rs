@@ -85,6 +85,13 @@ impl Skeleton {
         self.joints.iter().position(|j| j == name)
     }
 
+    /// Bone `k`'s name, its joints' names joined by `-` (`"right_knee-right_ankle"`), as the check's
+    /// violations and the input warnings name bones.
+    pub fn bone_name(&self, k: usize) -> String {
+        let bone = &self.bones[k];
+        format!("{}-{}", self.joints[bone.a], self.joints[bone.b])
+    }
+
     /// Largest radius of the bones touching joint `j` (0 when none does).
     pub fn joint_radius(&self, j: usize) -> f64 {
         self.bones.iter().filter(|b| b.a == j || b.b == j).map(|b| b.radius).fold(0.0, f64::max)

@@ -142,11 +142,10 @@ fn penetrations(scene: &Scene, human: &Human, solids: &[Solid], tolerance: f64) 
     let mut open: Vec<Option<(usize, usize, f64)>> = vec![None; sk.bones.len() * n];
     let mut out = Vec::new();
     let close = |k: usize, ep: (usize, usize, f64), end: usize, out: &mut Vec<Violation>| {
-        let bone = &sk.bones[k / n];
         out.push(Violation {
             kind: ViolationKind::Penetration,
             human: Some(human.id.clone()),
-            bone: Some(format!("{}-{}", sk.joints[bone.a], sk.joints[bone.b])),
+            bone: Some(sk.bone_name(k / n)),
             object: Some(owner_id(scene, solids[k % n].owner)),
             other: None,
             frame: Some(ep.1),
