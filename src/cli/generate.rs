@@ -8,7 +8,7 @@ use super::{ExitStatus, GlobalArgs};
 use anyhow::Context;
 use clap::Args;
 use rayon::prelude::*;
-use shade_sim::generator::{Autoguide, Checkpoint, Generator, GuidanceConfig, shipped_generator};
+use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig, shipped_generator};
 use shade_sim::human::{Meeting, SeatInTheWay, people_meeting, seats_in_the_way};
 use shade_sim::pipeline::{
     LayoutOptions, make_grouped_layouts, people_in_walls_message, rejections_message, room_groups,
@@ -82,18 +82,6 @@ pub struct GenerateArgs {
     /// below N, the model (shipped or --model) the rest.
     #[arg(long)]
     pub expert: Option<PathBuf>,
-    /// Autoguidance: a weaker model's folder of the same kind (trained shorter or smaller) whose
-    /// clean estimate the model's is pushed away from, x̂0_weak + W (x̂0 − x̂0_weak)
-    /// (docs/RESULTS.md, "Autoguidance").
-    #[arg(long, value_name = "DIR")]
-    pub autoguide: Option<PathBuf>,
-    /// Autoguidance's weight W (1: the model alone).
-    #[arg(long, value_name = "W", default_value_t = 1.5, requires = "autoguide")]
-    pub autoguide_weight: f64,
-    /// The noise levels autoguidance acts on, as the linear schedule's steps FROM:BELOW (default:
-    /// every step, 0:200).
-    #[arg(long, value_name = "FROM:BELOW", default_value = "0:200", requires = "autoguide")]
-    pub autoguide_steps: String,
 }
 
 /// Repair flags (shared with `demo`).
@@ -202,19 +190,6 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
     let groups = room_groups(&inputs);
     let custom = args.model.as_deref().map(Checkpoint::load).transpose()?;
     let expert = args.expert.as_deref().map(|dir| Checkpoint::load(dir).map(|c| (dir, c))).transpose()?;
-    let autoguide = args.autoguide.as_deref().map(|dir| Checkpoint::load(dir).map(|c| (dir, c))).transpose()?;
-    let guide = {
-        let parse = |v: Option<&str>| v.and_then(|v| v.trim().parse::<usize>().ok());
-        let mut parts = args.autoguide_steps.split(':');
-        let (from, below) = (parse(parts.next()), parse(parts.next()));
-        match (from, below, parts.next()) {
-            (Some(from), Some(below), None) if from < below => Autoguide { weight: args.autoguide_weight, from, below },
-            _ => anyhow::bail!(
-                "--autoguide-steps {}: expected FROM:BELOW, two steps with FROM < BELOW",
-                args.autoguide_steps
-            ),
-        }
-    };
     let generators: Vec<Generator> = groups
         .iter()
         .map(|(room, members)| -> anyhow::Result<_> {
@@ -239,12 +214,8 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
                 Some(strength) => generator.refining(strength),
                 None => generator,
             };
-            let generator = match &expert {
+            Ok(match &expert {
                 Some((dir, e)) => generator.with_expert(e.clone(), dir)?,
-                None => generator,
-            };
-            Ok(match &autoguide {
-                Some((dir, weak)) => generator.with_autoguide(weak.clone(), guide, dir)?,
                 None => generator,
             })
         })

@@ -4,8 +4,8 @@
 use super::count_prior::contact_kinds;
 use super::count_projection::{CountRule, CountTargets};
 use super::dataset::HostBatch;
-use super::sampler::{Autoguide, Chain, Denoisers, Guidance, Projection, empty_projection_steps, sample_from};
-use super::{Checkpoint, CheckpointMeta, Features, GenError, Schedule, tokens};
+use super::sampler::{Chain, Denoisers, Guidance, Projection, empty_projection_steps, sample_from};
+use super::{Checkpoint, Features, GenError, Schedule, tokens};
 use crate::data::Rng;
 use crate::human::{Conditions, ContactBox};
 use crate::scene::{RoomFrame, Scene};
@@ -35,8 +35,6 @@ pub struct Generator {
     from_input: bool,
     /// A low-noise expert for the chain's last steps ([`Generator::with_expert`]).
     expert: Option<Box<Checkpoint>>,
-    /// A weaker model guiding the chain ([`Generator::with_autoguide`]).
-    autoguide: Option<(Box<Checkpoint>, Autoguide)>,
 }
 
 impl Generator {
@@ -57,7 +55,6 @@ impl Generator {
             seen_counts: true,
             from_input: false,
             expert: None,
-            autoguide: None,
         }
     }
 
@@ -73,34 +70,26 @@ impl Generator {
         let Some(below) = theirs.model.expert_below else {
             return fail("the expert model was not trained as a low-noise expert (train --expert-below)".into());
         };
-        if !same_kind(main, theirs) {
+        let (a, b) = (&main.model, &theirs.model);
+        let same_kind = a.room_type == b.room_type
+            && a.room_token == b.room_token
+            && a.count_condition == b.count_condition
+            && a.diffusion_steps == b.diffusion_steps
+            && a.schedule == b.schedule
+            && a.anchor_scale == b.anchor_scale
+            && a.anchored_yaw == b.anchored_yaw
+            && a.max_contacts == b.max_contacts
+            && a.contact_tokens == b.contact_tokens
+            && a.floor_points == b.floor_points
+            && a.free_points == b.free_points
+            && main.bounds == theirs.bounds;
+        if !same_kind {
             return fail(format!(
                 "the expert (steps below {below}) does not fit the {} model: its room, conditioning, schedule or bounds differ",
-                main.model.room_names()
+                a.room_names()
             ));
         }
         Ok(Generator { expert: Some(Box::new(expert)), ..self })
-    }
-
-    /// The same generator guided by `weak`, a weaker model of the same kind (fewer parameters or
-    /// fewer training steps; the same conditioning, tokens, bounds and schedule), as `guide`
-    /// says ([`Autoguide`]); `path`, its folder, names it in the error.
-    pub fn with_autoguide(
-        self,
-        weak: Checkpoint,
-        guide: Autoguide,
-        path: &std::path::Path,
-    ) -> Result<Generator, GenError> {
-        if !same_kind(&self.checkpoint.meta, &weak.meta) {
-            return Err(GenError::Checkpoint {
-                path: path.to_path_buf(),
-                message: format!(
-                    "the guiding model does not fit the {} model: its room, conditioning, schedule or bounds differ",
-                    self.checkpoint.meta.model.room_names()
-                ),
-            });
-        }
-        Ok(Generator { autoguide: Some((Box::new(weak), guide)), ..self })
     }
 
     /// The low-noise expert that takes the chain's last steps, if any ([`Generator::with_expert`]).
@@ -292,11 +281,8 @@ impl Generator {
             let scenes: Vec<&Scene> = chunk.iter().map(|&(i, _)| inputs[i]).collect();
             let mut guide = guidance(&scenes);
             let cond = batch.cond(&meta.model)?;
-            let denoisers = Denoisers {
-                main: &self.checkpoint.denoiser,
-                expert: self.expert.as_ref().map(|e| &e.denoiser),
-                autoguide: self.autoguide.as_ref().map(|(w, guide)| (&w.denoiser, *guide)),
-            };
+            let denoisers =
+                Denoisers { main: &self.checkpoint.denoiser, expert: self.expert.as_ref().map(|e| &e.denoiser) };
             let tokens = sample_from(
                 denoisers,
                 &self.schedule,
@@ -328,23 +314,4 @@ impl Generator {
         }
         Ok(out)
     }
-}
-
-/// Whether `theirs` can share a chain with `main` (as its low-noise expert or its guide): the
-/// same room, conditioning, tokens, bounds and schedule; only the architecture, prediction and
-/// loss weighting may differ.
-fn same_kind(main: &CheckpointMeta, theirs: &CheckpointMeta) -> bool {
-    let (a, b) = (&main.model, &theirs.model);
-    a.room_type == b.room_type
-        && a.room_token == b.room_token
-        && a.count_condition == b.count_condition
-        && a.diffusion_steps == b.diffusion_steps
-        && a.schedule == b.schedule
-        && a.anchor_scale == b.anchor_scale
-        && a.anchored_yaw == b.anchored_yaw
-        && a.max_contacts == b.max_contacts
-        && a.contact_tokens == b.contact_tokens
-        && a.floor_points == b.floor_points
-        && a.free_points == b.free_points
-        && main.bounds == theirs.bounds
 }

@@ -56,7 +56,7 @@ pub use inference::{FastDenoiser, PreparedBatch};
 pub use model::{CondTensors, Denoiser, time_features};
 pub use params::Params;
 pub use phys_guidance::{PhysicsGuidance, physics_displacements};
-pub use sampler::{Autoguide, Chain, Denoisers, Guidance, Projection, empty_projection_steps, sample, sample_from};
+pub use sampler::{Chain, Denoisers, Guidance, Projection, empty_projection_steps, sample, sample_from};
 pub use schedule::Schedule;
 pub use seen_counts::{SeenCounts, SeenRoom};
 pub use shipped::{shipped_expert, shipped_generator, shipped_model, shipped_rooms};

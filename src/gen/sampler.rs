@@ -81,38 +81,20 @@ pub fn sample(
 
 /// The denoisers a chain calls: one for every step, and optionally a low-noise expert
 /// ([`ModelConfig::expert_below`](super::ModelConfig::expert_below)) that takes the steps below its
-/// own bound instead, and a weaker model that guides them ([`Autoguide`]).
+/// own bound instead.
 #[derive(Debug, Clone, Copy)]
 pub struct Denoisers<'a> {
     /// The model of the whole chain.
     pub main: &'a Denoiser,
     /// The low-noise expert, if any.
     pub expert: Option<&'a Denoiser>,
-    /// A weaker model of the same kind guiding the others, if any.
-    pub autoguide: Option<(&'a Denoiser, Autoguide)>,
 }
 
 impl<'a> Denoisers<'a> {
     /// `main` alone.
     pub fn one(main: &'a Denoiser) -> Denoisers<'a> {
-        Denoisers { main, expert: None, autoguide: None }
+        Denoisers { main, expert: None }
     }
-}
-
-/// Autoguidance (Karras et al. 2024, "Guiding a diffusion model with a bad version of itself"):
-/// in the steps it covers, the clean estimate becomes x̂0_weak + `weight` (x̂0 − x̂0_weak), where
-/// x̂0_weak is a weaker model's (smaller or trained less, same conditioning). What the good model
-/// knows and the weak one does not is pushed further; where both err alike, nothing moves. Unlike
-/// classifier-free guidance it needs no unconditional model and keeps the conditioning's strength.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Autoguide {
-    /// The guidance weight w (1: the good model alone).
-    pub weight: f64,
-    /// The steps guided, as noise levels of the linear schedule's steps
-    /// ([`Schedule::at_linear_noise`]): from this one's (included)…
-    pub from: usize,
-    /// …to this one's (excluded; T or more: to the chain's top).
-    pub below: usize,
 }
 
 /// [`sample`] from given layouts instead of pure noise (SDEdit, Meng et al. 2022): `start` holds
@@ -163,15 +145,6 @@ pub fn sample_from(
         }
         None => None,
     };
-    let mut weak = match denoisers.autoguide {
-        Some((w, guide)) => {
-            let fast = FastDenoiser::of(w)?;
-            let prepared = fast.prepare(cond)?;
-            let level = |t: usize| if t >= schedule.steps() { schedule.steps() } else { schedule.at_linear_noise(t) };
-            Some((fast, prepared, guide.weight as f32, level(guide.from)..level(guide.below)))
-        }
-        None => None,
-    };
     let visited = &chain.visited;
     let mut x = gaussian(&mut rngs)?;
     if let (Some(start), Some(&top)) = (start, visited.last()) {
@@ -193,16 +166,8 @@ pub fn sample_from(
         };
         let out = model.forward(batch, &noisy, t);
         let (ab, prediction) = (schedule.alpha_bars[t], model.config().prediction);
-        let mut x0: Vec<f32> = out.iter().zip(&noisy).map(|(&o, &x)| prediction.clean_estimate(o, x, ab)).collect();
-        if let Some((fast, prepared, weight, _)) = weak.as_mut().filter(|w| w.3.contains(&t)) {
-            let prediction = fast.config().prediction;
-            let out = fast.forward(prepared, &noisy, t);
-            for ((e, &o), &x) in x0.iter_mut().zip(&out).zip(&noisy) {
-                let weak = prediction.clean_estimate(o, x, ab);
-                *e = weak + *weight * (*e - weak);
-            }
-        }
-        x0.iter_mut().for_each(|e| *e = e.clamp(-1.0, 1.0));
+        let x0: Vec<f32> =
+            out.iter().zip(&noisy).map(|(&o, &x)| prediction.clean_estimate(o, x, ab).clamp(-1.0, 1.0)).collect();
         let x0 = Tensor::from_vec(x0, shape, &Device::Cpu)?;
         let x0 = if t < projection.steps {
             let x0 = match &projection.counts {
