@@ -8,6 +8,8 @@
 //! `ckl_floor` in `--json` and `--out`; for rows as large as the test split, also the CKL of real
 //! layouts that keep each test scene's own contact pieces (`eval::contact_floor`, `ckl_contact_floor`).
 //! `--baseline NAME` adds each row's layout metrics relative to the row NAME (`layout_ratio`).
+//! CKL by category (`categories` in JSON: both shares and each term) names, under the table, the
+//! categories each row draws least often against the reference.
 //!
 //! Realism beyond SHADE's table, against the same reference scenes: each category's per-room count
 //! distribution (`count KL`, the mean over categories of KL(reference ‖ row), and `unseen`, the
@@ -203,8 +205,36 @@ pub fn run(args: &EvalArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
                 f.draws, f.mean, f.p10, f.p90
             ))?;
         }
+        for r in &rows {
+            print_text(&largest_ckl_terms(r))?;
+        }
     }
     Ok(ExitStatus::Success)
+}
+
+/// Categories named per row under the table.
+const CKL_TERMS_SHOWN: usize = 3;
+
+/// The row's largest CKL terms, one line: the categories it draws least often against the
+/// reference, with both shares.
+fn largest_ckl_terms(row: &EvalRow) -> String {
+    let terms: Vec<String> = row
+        .categories
+        .iter()
+        .filter(|c| c.ckl_term > 0.0)
+        .take(CKL_TERMS_SHOWN)
+        .map(|c| {
+            format!("{} {:.4} ({:.2} % → {:.2} %)", c.category, c.ckl_term, 100.0 * c.reference, 100.0 * c.generated)
+        })
+        .collect();
+    match terms.is_empty() {
+        true => format!("CKL's largest terms, {}: none\n", row.name),
+        false => format!(
+            "CKL's largest terms, {} (share of the reference's pieces → the row's): {}\n",
+            row.name,
+            terms.join(", ")
+        ),
+    }
 }
 
 /// Draws of real layouts per floor.

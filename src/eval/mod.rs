@@ -15,7 +15,9 @@ pub use crate::measure::{FurnitureField, SURFACE_POINTS, human_penetration, scen
 pub use crate::measure::{contact_iou, scene_contact_iou};
 pub use ckl_floor::{CklFloor, ckl_floor, contact_floor, contact_pieces};
 pub use counts::{CountDistribution, CountReport, UnseenCount, count_report};
-pub use layout_metrics::{LayoutCounts, category_frequencies, category_kl, frequencies_of};
+pub use layout_metrics::{
+    CategoryShare, LayoutCounts, category_frequencies, category_kl, category_shares, frequencies_of,
+};
 pub use sca::{SCA_MIN_LAYOUTS, Sca, ScaConfig, layout_features, sca};
 pub use sizes::{SizeReport, UnrealSize, size_report};
 pub use table::{EvalRow, PhysicsRates, evaluate};

@@ -2,8 +2,8 @@
 //! category frequencies. Physics rates come from `sim` and are filled in by the caller.
 
 use super::{
-    CklFloor, CountReport, FurnitureField, LayoutCounts, Sca, SizeReport, category_frequencies, category_kl,
-    contact_iou, human_penetration,
+    CategoryShare, CklFloor, CountReport, FurnitureField, LayoutCounts, Sca, SizeReport, category_frequencies,
+    category_kl, category_shares, contact_iou, human_penetration,
 };
 use crate::human::contact_boxes;
 use crate::scene::{RoomType, Scene};
@@ -40,6 +40,10 @@ pub struct EvalRow {
     pub col_obj: f64,
     /// CKL against the reference frequencies.
     pub ckl: f64,
+    /// CKL by category: every category the reference or the row has, its two shares and its term,
+    /// largest term first (`eval::category_shares`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub categories: Vec<CategoryShare>,
     /// Mean E_pen per scene (sum over humans).
     pub e_pen: f64,
     /// Physics rates, when checked.
@@ -105,6 +109,7 @@ pub fn evaluate(name: &str, scenes: &[Scene], room: RoomType, reference: &[f64])
         r_out: counts.r_out(),
         col_obj: counts.col_obj(),
         ckl: category_kl(reference, &q),
+        categories: category_shares(reference, &q, room),
         e_pen: if scenes.is_empty() { 0.0 } else { pen / scenes.len() as f64 },
         physics: None,
         layout_ratio: None,
@@ -129,6 +134,7 @@ mod tests {
             r_out,
             col_obj,
             ckl: 0.0,
+            categories: Vec::new(),
             e_pen: 0.0,
             physics: None,
             layout_ratio: None,

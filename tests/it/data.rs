@@ -388,6 +388,9 @@ fn eval_counts_unseen_against_the_train_split_and_every_extra_dataset() {
         let o = shade_sim(&args);
         assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
         let rows: Vec<shade_sim::eval::EvalRow> = serde_json::from_slice(&o.stdout).unwrap();
+        // CKL by category: the terms of the categories either set has sum to CKL.
+        let terms: f64 = rows[0].categories.iter().map(|c| c.ckl_term).sum();
+        assert!(!rows[0].categories.is_empty() && (terms - rows[0].ckl).abs() < 1e-9, "{terms} {}", rows[0].ckl);
         let counts = rows[0].counts.clone().unwrap();
         let mut which: Vec<(String, usize)> = counts.unseen.iter().map(|u| (u.category.to_string(), u.count)).collect();
         which.sort();
