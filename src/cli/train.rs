@@ -52,7 +52,7 @@ pub struct TrainArgs {
     /// Peak learning rate (warm-up, then cosine to a tenth).
     #[arg(long, default_value_t = 3e-4)]
     pub lr: f64,
-    /// Model size: small (shipped), medium (wider) or tiny (tests).
+    /// Model size: small (shipped), medium (wider), deep (8 blocks) or tiny (tests).
     #[arg(long, default_value = "small")]
     pub preset: String,
     /// What the denoiser predicts: eps, x0 or v (default: the preset's, x0 for small and tiny).
@@ -167,7 +167,7 @@ impl TrainObserver for Bar {
 pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     let stats = read_stats(&args.data)?;
     let mut model = ModelConfig::preset(&args.preset, stats.room_type)
-        .ok_or_else(|| anyhow::anyhow!("--preset: unknown preset {:?} (small, medium, tiny)", args.preset))?;
+        .ok_or_else(|| anyhow::anyhow!("--preset: unknown preset {:?} (small, medium, deep, tiny)", args.preset))?;
     if let Some(prediction) = args.prediction {
         model.prediction = prediction;
     }
