@@ -27,7 +27,7 @@ use shade_sim::pipeline::{
     unseen_contacts_message,
 };
 use shade_sim::repair::RepairConfig;
-use shade_sim::scene::{ActionSpan, FloorPlan, RoomType, Scene};
+use shade_sim::scene::{ActionSpan, FloorPlan, RoomType, Scene, validate_floor_plan};
 use shade_sim::sim::{CheckConfig, check_scene};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -565,7 +565,11 @@ fn floor_plan_of(py: Python<'_>, floor: &Bound<'_, PyAny>, height: f64) -> PyRes
         return Ok(FloorPlan::rectangle(w, d, height));
     }
     if let Ok(polygon) = floor.extract::<Vec<[f64; 2]>>() {
-        return Ok(FloorPlan { polygon, height });
+        let plan = FloorPlan { polygon, height };
+        return match validate_floor_plan(&plan).first() {
+            Some(problem) => Err(PyValueError::new_err(format!("floor: {problem}"))),
+            None => Ok(plan),
+        };
     }
     scene_of(py, floor).map(|scene| scene.floor_plan.clone()).map_err(|e| {
         PyValueError::new_err(format!(

@@ -67,6 +67,9 @@ def test_motions_that_cannot_be_imported_raise_motion_error_with_the_command_lin
         shade_sim.import_motion([walk], "kitchen", (5, 4))
     with pytest.raises(ValueError, match="floor: expected"):
         shade_sim.import_motion([walk], "living", "5x4")
+    # A floor given as corners that cross is named as the floor, not as the motion placed in it.
+    with pytest.raises(ValueError, match=r"floor: floor_plan.polygon: floor polygon intersects itself"):
+        shade_sim.import_motion([walk], "living", [(0, 0), (4, 4), (4, 0), (0, 4)])
     with pytest.raises(ValueError, match="motions: "):
         shade_sim.import_motion([42], "living", (5, 4))
 

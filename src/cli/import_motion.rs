@@ -9,7 +9,7 @@ use glam::DVec2;
 use shade_sim::human::{people_meeting, seats_in_the_way};
 use shade_sim::motion::{ImportOptions, MotionError, Placement, Trim, Units, UpAxis, read_motion};
 use shade_sim::pipeline::{Imported, import_placed};
-use shade_sim::scene::{ActionSpan, FloorPlan};
+use shade_sim::scene::{ActionSpan, FloorPlan, validate_floor_plan};
 use shade_sim::sim::CheckConfig;
 use std::path::{Path, PathBuf};
 
@@ -93,7 +93,14 @@ fn floor_of(arg: &str, height: f64) -> anyhow::Result<FloorPlan> {
     let text = std::fs::read_to_string(path).with_context(|| format!("{arg}: not WxD, and not a readable file"))?;
     let value: serde_json::Value = serde_json::from_str(&text).with_context(|| format!("{arg}: not JSON"))?;
     let plan = value.get("floor_plan").cloned().unwrap_or(value);
-    serde_json::from_value(plan).with_context(|| format!("{arg}: not a floor plan (`polygon` and `height`)"))
+    let plan: FloorPlan =
+        serde_json::from_value(plan).with_context(|| format!("{arg}: not a floor plan (`polygon` and `height`)"))?;
+    // A plan the scene format refuses (a polygon crossing itself, too few corners) is named here,
+    // not later as the first motion's input.
+    if let Some(problem) = validate_floor_plan(&plan).first() {
+        bail!("{arg}: {problem}");
+    }
+    Ok(plan)
 }
 
 /// `--place X,Y,YAW_DEG` (`Some`), or `--place auto` (`None`: found by `place_to_fit`).

@@ -27,4 +27,4 @@ pub use limits::SceneLimits;
 pub use object::Object;
 pub use scene::{FORMAT, Scene};
 pub use summary::{FloorSummary, HumanSummary, SceneSummary};
-pub use validate::validate;
+pub use validate::{validate, validate_floor_plan};

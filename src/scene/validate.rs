@@ -6,7 +6,7 @@
 //! for the polygon's self-intersection test, which runs only within the vertex limit.
 
 use super::JOINT_NAMES;
-use super::{FORMAT, Human, Problem, ProblemKind, Scene, SceneLimits};
+use super::{FORMAT, FloorPlan, Human, Problem, ProblemKind, Scene, SceneLimits};
 use std::collections::HashSet;
 
 const LIMITS: SceneLimits = SceneLimits::FORMAT;
@@ -21,8 +21,7 @@ struct RoomBounds {
 }
 
 impl RoomBounds {
-    fn of(scene: &Scene) -> Option<RoomBounds> {
-        let plan = &scene.floor_plan;
+    fn of(plan: &FloorPlan) -> Option<RoomBounds> {
         if plan.polygon.is_empty() || !plan.height.is_finite() || plan.polygon.iter().flatten().any(|v| !v.is_finite())
         {
             return None;
@@ -59,8 +58,8 @@ pub fn validate(scene: &Scene) -> Vec<Problem> {
     if scene.format != FORMAT {
         out.push("format", ProblemKind::WrongFormat { found: scene.format.clone() });
     }
-    let room = RoomBounds::of(scene);
-    floor_plan(scene, room, &mut out);
+    let room = RoomBounds::of(&scene.floor_plan);
+    floor_plan(&scene.floor_plan, room, &mut out);
     objects(scene, room, &mut out);
     out.at_most("humans", "humans", scene.humans.len(), LIMITS.max_humans);
     let total_frames: usize = scene.humans.iter().map(|h| h.frames.len()).sum();
@@ -120,8 +119,15 @@ impl Problems {
     }
 }
 
-fn floor_plan(scene: &Scene, room: Option<RoomBounds>, out: &mut Problems) {
-    let plan = &scene.floor_plan;
+/// Every problem of a floor plan on its own (a plan given apart from a scene: `import-motion
+/// --floor PLAN.json`, Python's `floor=`), as [`validate`] reports them in a scene.
+pub fn validate_floor_plan(plan: &FloorPlan) -> Vec<Problem> {
+    let mut out = Problems(Vec::new());
+    floor_plan(plan, RoomBounds::of(plan), &mut out);
+    out.0
+}
+
+fn floor_plan(plan: &FloorPlan, room: Option<RoomBounds>, out: &mut Problems) {
     out.positive(|| "floor_plan.height".into(), plan.height, LIMITS.max_height);
     let path = "floor_plan.polygon";
     if !out.at_most(path, "floor polygon vertices", plan.polygon.len(), LIMITS.max_vertices) {

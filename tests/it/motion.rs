@@ -597,6 +597,31 @@ fn bad_motion_files_are_one_line_and_exit_2() {
 }
 
 #[test]
+fn a_bad_floor_plan_file_is_named_in_its_one_error_line() {
+    // The plan is what is wrong, not the motion that would have been placed in it.
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [
+        ("bowtie.json", r#"{"polygon": [[0,0],[4,4],[4,0],[0,4]], "height": 2.6}"#, "floor polygon intersects itself"),
+        ("two_corners.json", r#"{"floor_plan": {"polygon": [[0,0],[4,0]], "height": 2.6}}"#, "has 2 vertices"),
+        ("no_height.json", r#"{"polygon": [[0,0],[4,0],[4,4]], "height": 0}"#, "floor_plan.height"),
+    ];
+    let clip = clip("freebvh_walk.bvh");
+    for (name, text, want) in cases {
+        let plan = dir.path().join(name);
+        std::fs::write(&plan, text).unwrap();
+        let out = dir.path().join(format!("{name}.out.json"));
+        let (plan, out_arg) = (plan.to_str().unwrap(), out.to_str().unwrap());
+        let args = ["import-motion", clip.to_str().unwrap(), "--room", "bedroom", "--floor", plan, "--out", out_arg];
+        let o = shade_sim(&args);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{name}: {err}");
+        assert!(err.starts_with(&format!("error: {plan}: ")) && err.contains(want), "{name}: {err}");
+        assert_eq!(err.lines().count(), 1, "{name}: {err}");
+        assert!(!out.exists(), "{name}");
+    }
+}
+
+#[test]
 fn labels_agree_with_the_hand_built_and_example_motions() {
     // The visitors of three hand-built inputs were labelled by the labeller itself, as an import
     // labels a capture (examples/hand_built_inputs.rs, `visitor`): they cannot test it.
