@@ -556,26 +556,27 @@ fn floor_plan_of(py: Python<'_>, floor: &Bound<'_, PyAny>, height: f64) -> PyRes
     if !(height.is_finite() && height > 0.0) {
         return Err(PyValueError::new_err(format!("height: must be a positive number of metres, not {height}")));
     }
-    if let Ok((w, d)) = floor.extract::<(f64, f64)>() {
+    let plan = if let Ok((w, d)) = floor.extract::<(f64, f64)>() {
         if !(w.is_finite() && d.is_finite() && w > 0.0 && d > 0.0) {
             return Err(PyValueError::new_err(format!(
                 "floor: ({w}, {d}): the sides must be positive numbers of metres"
             )));
         }
-        return Ok(FloorPlan::rectangle(w, d, height));
+        FloorPlan::rectangle(w, d, height)
+    } else if let Ok(polygon) = floor.extract::<Vec<[f64; 2]>>() {
+        FloorPlan { polygon, height }
+    } else {
+        return scene_of(py, floor).map(|scene| scene.floor_plan.clone()).map_err(|e| {
+            PyValueError::new_err(format!(
+                "floor: expected (W, D) in metres, a list of (x, y) corners, or a scene (Scene, path or dict): {e}"
+            ))
+        });
+    };
+    // A plan the scene format refuses is named as the floor, not later as the first motion's input.
+    match validate_floor_plan(&plan).first() {
+        Some(problem) => Err(PyValueError::new_err(format!("floor: {problem}"))),
+        None => Ok(plan),
     }
-    if let Ok(polygon) = floor.extract::<Vec<[f64; 2]>>() {
-        let plan = FloorPlan { polygon, height };
-        return match validate_floor_plan(&plan).first() {
-            Some(problem) => Err(PyValueError::new_err(format!("floor: {problem}"))),
-            None => Ok(plan),
-        };
-    }
-    scene_of(py, floor).map(|scene| scene.floor_plan.clone()).map_err(|e| {
-        PyValueError::new_err(format!(
-            "floor: expected (W, D) in metres, a list of (x, y) corners, or a scene (Scene, path or dict): {e}"
-        ))
-    })
 }
 
 #[pymodule]

@@ -83,22 +83,27 @@ pub enum UpArg {
 
 fn floor_of(arg: &str, height: f64) -> anyhow::Result<FloorPlan> {
     let rect = arg.split_once(['x', 'X']).and_then(|(w, d)| Some((w.parse::<f64>().ok()?, d.parse::<f64>().ok()?)));
-    if let Some((w, d)) = rect {
-        if !(w.is_finite() && d.is_finite() && w > 0.0 && d > 0.0 && height.is_finite() && height > 0.0) {
-            bail!("--floor {arg}: the sides and --height must be positive numbers of metres");
+    let (plan, name) = match rect {
+        Some((w, d)) => {
+            if !(w.is_finite() && d.is_finite() && w > 0.0 && d > 0.0 && height.is_finite() && height > 0.0) {
+                bail!("--floor {arg}: the sides and --height must be positive numbers of metres");
+            }
+            (FloorPlan::rectangle(w, d, height), format!("--floor {arg}"))
         }
-        return Ok(FloorPlan::rectangle(w, d, height));
-    }
-    let path = Path::new(arg);
-    let text = std::fs::read_to_string(path).with_context(|| format!("{arg}: not WxD, and not a readable file"))?;
-    let value: serde_json::Value = serde_json::from_str(&text).with_context(|| format!("{arg}: not JSON"))?;
-    let plan = value.get("floor_plan").cloned().unwrap_or(value);
-    let plan: FloorPlan =
-        serde_json::from_value(plan).with_context(|| format!("{arg}: not a floor plan (`polygon` and `height`)"))?;
-    // A plan the scene format refuses (a polygon crossing itself, too few corners) is named here,
-    // not later as the first motion's input.
+        None => {
+            let text = std::fs::read_to_string(Path::new(arg))
+                .with_context(|| format!("{arg}: not WxD, and not a readable file"))?;
+            let value: serde_json::Value = serde_json::from_str(&text).with_context(|| format!("{arg}: not JSON"))?;
+            let plan = value.get("floor_plan").cloned().unwrap_or(value);
+            let plan = serde_json::from_value(plan)
+                .with_context(|| format!("{arg}: not a floor plan (`polygon` and `height`)"))?;
+            (plan, arg.to_string())
+        }
+    };
+    // A plan the scene format refuses (a polygon crossing itself, a room over its size limits) is
+    // named here, not later as the first motion's input.
     if let Some(problem) = validate_floor_plan(&plan).first() {
-        bail!("{arg}: {problem}");
+        bail!("{name}: {problem}");
     }
     Ok(plan)
 }

@@ -619,6 +619,15 @@ fn a_bad_floor_plan_file_is_named_in_its_one_error_line() {
         assert_eq!(err.lines().count(), 1, "{name}: {err}");
         assert!(!out.exists(), "{name}");
     }
+    // A W×D room over the format's 50 m is named as the --floor it came from.
+    let out = dir.path().join("huge.json");
+    let args =
+        ["import-motion", clip.to_str().unwrap(), "--room", "bedroom", "--floor", "1000x1000", "--place", "auto"];
+    let o = shade_sim(&[&args[..], &["--out", out.to_str().unwrap()]].concat());
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.starts_with("error: --floor 1000x1000: floor_plan.polygon: 1000 is outside"), "{err}");
+    assert!(!out.exists());
 }
 
 #[test]
