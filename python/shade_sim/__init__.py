@@ -113,6 +113,9 @@ def import_motion(
     that leaves the floor plan or reaches into a wall raises ``MotionError`` naming the file (or
     ``<motion k>`` for an array) and the frame."""
     items = [_motion_item(m) for m in motions]
+    if isinstance(place, str):
+        # A bare "auto" would be read as four entries, one per letter.
+        raise ValueError(f"place: one entry per motion, e.g. [{place!r}], not the string {place!r}")
     return _native.import_motion(
         items, room, floor, place=None if place is None else list(place), trim=None if trim is None else list(trim),
         fps=fps, stature=stature, units=units, up=up, source_fps=source_fps, height=height,

@@ -72,6 +72,8 @@ def test_motions_that_cannot_be_imported_raise_motion_error_with_the_command_lin
         shade_sim.import_motion([walk], "living", [(0, 0), (4, 4), (4, 0), (0, 4)])
     with pytest.raises(ValueError, match=r"floor: floor_plan.polygon: 1000 is outside"):
         shade_sim.import_motion([walk], "living", (1000, 1000), place=["auto"])
+    with pytest.raises(ValueError, match=r"place: one entry per motion, e.g. \['auto'\]"):
+        shade_sim.import_motion([walk], "living", (5, 4), place="auto")
     with pytest.raises(ValueError, match="motions: "):
         shade_sim.import_motion([42], "living", (5, 4))
 
