@@ -13,15 +13,15 @@
 //! behaviour of its own beyond the resampling loop, and a tally of what each input's rejected
 //! layouts hit ([`Rejections`]), so that an input without a clean layout is told why. For the
 //! import of motion ([`crate::motion`]) it has [`import_placed`], which the command line and
-//! Python share: the search for a placement that keeps a clip inside the room ([`place_to_fit`])
-//! and the check's refusal of a body in a wall.
+//! Python share: the search for a placement that keeps a clip inside the room and apart from the
+//! other people ([`place_to_fit`]), and the check's refusal of a body in a wall.
 
 use crate::generator::{GenError, Generator, GuidanceConfig};
-use crate::human::ContactBox;
+use crate::human::{ContactBox, inside_each_other_at_once, seats_in_the_way};
 use crate::motion::{Clip, ImportOptions, ImportReport, MotionError, Placement, import_clip, import_clips};
 use crate::physics::Physics;
 use crate::repair::{RepairConfig, RepairReport, repair_scene};
-use crate::scene::{FloorPlan, RoomType, Scene};
+use crate::scene::{FloorPlan, Human, RoomType, Scene};
 use crate::sim::{CheckConfig, CheckReport, SimPhysics, Violation, ViolationKind, check_scene, people_in_walls};
 use rayon::prelude::*;
 use std::borrow::Borrow;
@@ -210,14 +210,22 @@ pub struct Imported {
 }
 
 /// The import of motion as `import-motion` and Python's `import_motion` make it: clip `i` placed
-/// by [`place_to_fit`] where `auto[i]`, then `motion::import_clips`, then the refusal of a body in
-/// a wall ([`body_in_a_wall`]).
+/// by [`place_to_fit`] where `auto[i]` (in order, apart from the clips placed by hand, kept where
+/// captured or found before it), then `motion::import_clips`, then the refusal of a body in a wall
+/// ([`body_in_a_wall`]).
 pub fn import_placed(clips: &[(PathBuf, Clip)], opts: &ImportOptions, auto: &[bool]) -> Result<Imported, MotionError> {
     let mut opts = opts.clone();
-    for (i, (file, clip)) in clips.iter().enumerate().filter(|(i, _)| auto.get(*i) == Some(&true)) {
-        let found = place_to_fit(clip, i, &opts).map_err(|m| MotionError::invalid(file, m))?;
+    let is_auto = |i: usize| auto.get(i) == Some(&true);
+    // The people already where they will be; a clip that does not import is refused below.
+    let mut placed: Vec<Human> = (0..clips.len())
+        .filter(|&i| !is_auto(i))
+        .filter_map(|i| import_clip(&clips[i].1, i, &opts).ok().map(|(human, _)| human))
+        .collect();
+    for (i, (file, clip)) in clips.iter().enumerate().filter(|(i, _)| is_auto(*i)) {
+        let (found, human) = place_to_fit(clip, i, &opts, &placed).map_err(|m| MotionError::invalid(file, m))?;
         opts.places.resize(opts.places.len().max(i + 1), None);
         opts.places[i] = Some(found);
+        placed.push(human);
     }
     let (scene, reports) = import_clips(clips, &opts)?;
     let files: Vec<PathBuf> = clips.iter().map(|(file, _)| file.clone()).collect();
@@ -270,25 +278,54 @@ pub fn fitting_placements(floor: &FloorPlan) -> Vec<Placement> {
         .collect()
 }
 
-/// The first of [`fitting_placements`] at which clip `i` (imported with `opts`, its own placement
-/// replaced) stays inside the floor plan at every frame and its body out of the walls, as `check`
-/// tests them; the error says none does.
-pub fn place_to_fit(clip: &Clip, i: usize, opts: &ImportOptions) -> Result<Placement, String> {
+/// Where clip `i` (imported with `opts`, its own placement replaced) goes among the people
+/// already placed (`others`), and the person it makes there: the first of [`fitting_placements`]
+/// at which it stays inside the floor plan at every frame, its body out of the walls as `check`
+/// tests them, and apart from every other person — never inside one at the same moment
+/// ([`inside_each_other_at_once`]), never through where one sits or lies, nor one through where it
+/// does ([`seats_in_the_way`]). Where no placement keeps it apart, the first that fits the room
+/// (the command line and Python then warn about what meets). The error says none fits.
+pub fn place_to_fit(
+    clip: &Clip,
+    i: usize,
+    opts: &ImportOptions,
+    others: &[Human],
+) -> Result<(Placement, Human), String> {
     let candidates = fitting_placements(&opts.floor);
+    let tolerance = CheckConfig::default().tolerance;
     let mut tried = opts.clone();
     tried.places.resize(tried.places.len().max(i + 1), None);
+    let mut fitting = None;
     for &place in &candidates {
         tried.places[i] = Some(place);
         let Ok((human, _)) = import_clip(clip, i, &tried) else { continue };
         let alone = Scene { humans: vec![human], ..Scene::new(opts.room_type, opts.floor.clone()) };
-        if people_in_walls(&alone, &CheckConfig::default()).is_empty() {
-            return Ok(place);
+        if !people_in_walls(&alone, &CheckConfig::default()).is_empty() {
+            continue;
         }
+        let human = alone.humans.into_iter().next().unwrap_or_else(|| unreachable!("one person"));
+        if others.iter().all(|o| apart(&human, o, &opts.floor, tolerance)) {
+            return Ok((place, human));
+        }
+        fitting.get_or_insert((place, human));
     }
-    Err(format!(
-        "no placement keeps the clip inside the floor plan and out of its walls ({} tried: the plan's centre and a 5 × 5 grid, each facing four ways); a larger --floor, or --trim",
-        candidates.len()
-    ))
+    fitting.ok_or_else(|| {
+        format!(
+            "no placement keeps the clip inside the floor plan and out of its walls ({} tried: the plan's centre and a 5 × 5 grid, each facing four ways); a larger --floor, or --trim",
+            candidates.len()
+        )
+    })
+}
+
+/// Whether people `a` and `b` can share a room as placed: never inside each other at once, and
+/// neither walking or standing through where the other sits or lies.
+fn apart(a: &Human, b: &Human, floor: &FloorPlan, tolerance: f64) -> bool {
+    if inside_each_other_at_once(a, b, tolerance) {
+        return false;
+    }
+    let mut pair = Scene::new(RoomType::Living, floor.clone());
+    pair.humans = vec![a.clone(), b.clone()];
+    seats_in_the_way(&pair, tolerance).iter().all(|s| s.human == s.seated)
 }
 
 /// The seed of resampling round `round` for the run seed `seed` (round 0 is the seed itself, so a

@@ -109,6 +109,11 @@ def test_place_auto_puts_the_motion_where_it_fits_as_the_command_line_does(cli, 
         shade_sim.import_motion([cmu], "living", (2, 2), place=["auto"])
     with pytest.raises(ValueError, match="place: each entry"):
         shade_sim.import_motion([cmu], "living", (5, 4), place=["centre"])
+    # Two clips placed by auto are put apart, not both at the first spot that fits.
+    walk = clip(root, "freebvh_walk.bvh")
+    two = shade_sim.import_motion([walk, walk], "living", (5, 4), place=["auto", "auto"])
+    starts = [two.frames(i)[0, 0, :2] for i in range(2)]
+    assert np.linalg.norm(starts[0] - starts[1]) > 0.5, starts
 
 
 def test_the_readme_s_python_lines_run_as_written(root, monkeypatch):

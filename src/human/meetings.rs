@@ -76,6 +76,21 @@ pub fn meets_anyone<'a>(h: &Human, others: impl IntoIterator<Item = &'a Human>, 
     others.into_iter().any(|o| meeting(h, o, tolerance).is_some())
 }
 
+/// Whether `a` and `b` are inside each other (by more than `tolerance`) at some moment, whether
+/// they hold a pose or move: frame f of one against frame f of the other, a clip that has ended
+/// holding its last frame. Stricter than [`people_meeting`], which lets two moving people pass
+/// through each other as two traces: this is the test for putting a clip somewhere new
+/// (`pipeline::place_to_fit`), where two people on top of each other are a placement's doing.
+pub fn inside_each_other_at_once(a: &Human, b: &Human, tolerance: f64) -> bool {
+    if a.frames.is_empty() || b.frames.is_empty() {
+        return false;
+    }
+    (0..a.frames.len().max(b.frames.len())).any(|f| {
+        let frames = [f.min(a.frames.len() - 1), f.min(b.frames.len() - 1)];
+        deepest_overlap(a, b, frames, tolerance).is_some()
+    })
+}
+
 /// `a` and `b` inside each other, where one of them holds a pose (module header).
 fn meeting(a: &Human, b: &Human, tolerance: f64) -> Option<Meeting> {
     let held = |h: &Human| h.frames.iter().all(|f| f.iter().zip(&h.frames[0]).all(|(p, q)| dist(p, q) <= tolerance));
@@ -200,5 +215,28 @@ mod tests {
         let mut back = walk();
         back.reverse();
         assert!(people_meeting(&scene(vec![person("a", 10.0, &walk()), person("b", 10.0, &back)]), 0.02).is_empty());
+    }
+
+    #[test]
+    fn at_once_counts_walkers_together_in_time_and_not_on_one_path_at_other_times() {
+        let mut back = walk();
+        back.reverse();
+        // Through each other at frame 4 (both at x = 0).
+        assert!(inside_each_other_at_once(&person("a", 10.0, &walk()), &person("b", 10.0, &back), 0.02));
+        // The same path, one 1 m (two steps) behind the other all along: never at once.
+        let behind: Vec<DVec2> = walk().iter().map(|p| *p - DVec2::new(1.0, 0.0)).collect();
+        assert!(!inside_each_other_at_once(&person("a", 10.0, &walk()), &person("b", 10.0, &behind), 0.02));
+        // Half a step behind: the hanging arms meet.
+        let close: Vec<DVec2> = walk().iter().map(|p| *p - DVec2::new(0.25, 0.0)).collect();
+        assert!(inside_each_other_at_once(&person("a", 10.0, &walk()), &person("b", 10.0, &close), 0.02));
+        // A clip that has ended holds its last frame: a one-frame person at x = 2 meets the walker
+        // when it arrives there at frame 8.
+        let end = person("s", 10.0, &[DVec2::new(2.0, 0.0)]);
+        assert!(inside_each_other_at_once(&person("a", 10.0, &walk()), &end, 0.02));
+        assert!(!inside_each_other_at_once(
+            &person("a", 10.0, &walk()),
+            &person("s", 10.0, &[DVec2::new(0.0, 2.0)]),
+            0.02
+        ));
     }
 }

@@ -18,7 +18,7 @@ pub use conditions::{
     free_space_mask, palm_of,
 };
 pub use gait::Gait;
-pub use meetings::{Meeting, meets_anyone, people_meeting};
+pub use meetings::{Meeting, inside_each_other_at_once, meets_anyone, people_meeting};
 pub use motion::Motion;
 pub use pose::{BODY_BONES, KNEE_OVERHANG, Pose, SEAT_BONES, lie, sit, stand, stand_local, touch, two_bone_ik};
 pub use seats_in_the_way::{SeatInTheWay, seats_in_the_way};
