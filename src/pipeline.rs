@@ -22,7 +22,9 @@ use crate::motion::{Clip, ImportOptions, ImportReport, MotionError, Placement, i
 use crate::physics::Physics;
 use crate::repair::{RepairConfig, RepairReport, repair_scene};
 use crate::scene::{FloorPlan, Human, RoomType, Scene};
-use crate::sim::{CheckConfig, CheckReport, SimPhysics, Violation, ViolationKind, check_scene, people_in_walls};
+use crate::sim::{
+    CheckConfig, CheckReport, SimPhysics, Violation, ViolationKind, check_scene, people_in_walls, people_off_the_floor,
+};
 use rayon::prelude::*;
 use std::borrow::Borrow;
 use std::path::PathBuf;
@@ -195,6 +197,26 @@ pub fn people_in_walls_message(walls: &[Violation]) -> Option<String> {
         worst.frame.unwrap_or(0),
         walls.len()
     ))
+}
+
+/// The warnings for an input's people whose feet are off the floor ([`people_off_the_floor`]), as
+/// the command line and Python give them: who, which frames and seconds, how high, what to do.
+pub fn off_the_floor_warnings(scene: &Scene, cfg: &CheckConfig) -> Vec<String> {
+    let fps = |id: &Option<String>| scene.humans.iter().find(|h| Some(&h.id) == id.as_ref()).map_or(30.0, |h| h.fps);
+    people_off_the_floor(scene, cfg)
+        .iter()
+        .map(|v| {
+            let [start, end] = v.frames.unwrap_or([0, 0]);
+            format!(
+                "{}'s feet are off the floor at frames {start}–{end} ({:.2}–{:.2} s; {:.2} m up at frame {}): they stand on something, and no piece here is for standing on, so no layout passes the check; leave those frames out (--trim)",
+                v.human.as_deref().unwrap_or("?"),
+                start as f64 / fps(&v.human),
+                end as f64 / fps(&v.human),
+                v.depth,
+                v.frame.unwrap_or(start)
+            )
+        })
+        .collect()
 }
 
 /// An input made from motion: the scene, what the import found in each clip, and where each clip

@@ -23,8 +23,8 @@ use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig};
 use shade_sim::human::{people_meeting, seats_in_the_way};
 use shade_sim::motion::{ImportOptions, Placement, Trim, Units, UpAxis, npy::read_npz, read_motion};
 use shade_sim::pipeline::{
-    LayoutOptions, import_placed, make_grouped_layouts, people_in_walls_message, rejections_message, room_groups,
-    unseen_contacts_message,
+    LayoutOptions, import_placed, make_grouped_layouts, off_the_floor_warnings, people_in_walls_message,
+    rejections_message, room_groups, unseen_contacts_message,
 };
 use shade_sim::repair::RepairConfig;
 use shade_sim::scene::{ActionSpan, FloorPlan, RoomType, Scene, validate_floor_plan};
@@ -305,6 +305,9 @@ fn generate<'py>(
         }
         for s in seats_in_the_way(input, opts.check.tolerance) {
             user_warning(py, &format!("input {i}: {s}"))?;
+        }
+        for w in off_the_floor_warnings(input, &opts.check) {
+            user_warning(py, &format!("input {i}: {w}"))?;
         }
     }
     let mut per_input = layouts.kept.into_iter().map(|kept| kept.into_iter().map(|l| PyScene::new(l.scene)).collect());

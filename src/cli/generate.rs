@@ -11,8 +11,8 @@ use rayon::prelude::*;
 use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig, shipped_generator};
 use shade_sim::human::{Meeting, SeatInTheWay, people_meeting, seats_in_the_way};
 use shade_sim::pipeline::{
-    LayoutOptions, make_grouped_layouts, people_in_walls_message, rejections_message, room_groups,
-    unseen_contacts_message,
+    LayoutOptions, make_grouped_layouts, off_the_floor_warnings, people_in_walls_message, rejections_message,
+    room_groups, unseen_contacts_message,
 };
 use shade_sim::repair::{RepairConfig, RepairTotals};
 use shade_sim::scene::{RoomType, Scene};
@@ -257,6 +257,12 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
     for (file, found) in files.iter().zip(&in_the_way) {
         for s in found {
             tracing::warn!("{}: {s}", file.display());
+        }
+    }
+    // Someone standing on something no piece is for (a climb in a capture): said before sampling.
+    for (file, input) in files.iter().zip(&inputs) {
+        for w in off_the_floor_warnings(input, &opts.check) {
+            tracing::warn!("{}: {w}", file.display());
         }
     }
     let bar = super::progress::bar(global, (inputs.len() * args.samples) as u64, "generate");

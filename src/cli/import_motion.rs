@@ -8,7 +8,7 @@ use clap::{Args, ValueEnum};
 use glam::DVec2;
 use shade_sim::human::{people_meeting, seats_in_the_way};
 use shade_sim::motion::{ImportOptions, MotionError, Placement, Trim, Units, UpAxis, read_motion};
-use shade_sim::pipeline::{Imported, import_placed};
+use shade_sim::pipeline::{Imported, import_placed, off_the_floor_warnings};
 use shade_sim::scene::{ActionSpan, FloorPlan, validate_floor_plan};
 use shade_sim::sim::CheckConfig;
 use std::path::{Path, PathBuf};
@@ -193,6 +193,9 @@ pub fn run(args: &ImportMotionArgs, global: &GlobalArgs) -> anyhow::Result<ExitS
     }
     for s in seats_in_the_way(&scene, CheckConfig::default().tolerance) {
         tracing::warn!("{}: {s}", args.out.display());
+    }
+    for w in off_the_floor_warnings(&scene, &CheckConfig::default()) {
+        tracing::warn!("{}: {w}", args.out.display());
     }
     let place_of = |i: usize| places[i].map(|p| [p.at.x, p.at.y, p.yaw_degrees]);
     if global.json {

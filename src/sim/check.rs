@@ -32,6 +32,11 @@ pub struct CheckConfig {
     pub max_displacement: f64,
     /// A piece that tilts more than this is unstable (degrees). Default 5.
     pub max_tilt_degrees: f64,
+    /// How long (s) a walking, standing or touching person's feet may be off the floor, and off
+    /// every piece under them, by more than `support_distance` before that is missing support: a
+    /// jump's or a run's flight is shorter, a person who stands on something no piece holds (a
+    /// climb onto a structure in a capture) is there for longer. Default 0.5.
+    pub max_flight_seconds: f64,
 }
 
 impl Default for CheckConfig {
@@ -43,6 +48,7 @@ impl Default for CheckConfig {
             stability_seconds: 2.0,
             max_displacement: 0.05,
             max_tilt_degrees: 5.0,
+            max_flight_seconds: 0.5,
         }
     }
 }
@@ -82,6 +88,14 @@ pub fn people_in_walls(scene: &Scene, cfg: &CheckConfig) -> Vec<Violation> {
     scene.humans.iter().flat_map(|h| penetrations(scene, h, &walls, cfg.tolerance)).collect()
 }
 
+/// The people of `scene` whose feet are off the floor for longer than a flight in an empty room
+/// (the violations `unsupported … feet` of [`footing`] without furniture): someone who climbs onto
+/// or stands on something in a capture. No piece the generator places is for standing on, so such
+/// an input's layouts fail [`check_scene`] unless a piece happens to stand under the feet.
+pub fn people_off_the_floor(scene: &Scene, cfg: &CheckConfig) -> Vec<Violation> {
+    scene.humans.iter().flat_map(|h| footing(h, &[], cfg.support_distance, cfg.max_flight_seconds)).collect()
+}
+
 /// Runs every check on a (validated) scene.
 pub fn check_scene(scene: &Scene, cfg: &CheckConfig) -> CheckReport {
     let furniture = furniture_solids(scene);
@@ -93,6 +107,7 @@ pub fn check_scene(scene: &Scene, cfg: &CheckConfig) -> CheckReport {
         frames += human.frames.len();
         violations.extend(penetrations(scene, human, &solids, cfg.tolerance));
         violations.extend(support(human, &furniture, cfg.support_distance));
+        violations.extend(footing(human, &furniture, cfg.support_distance, cfg.max_flight_seconds));
     }
     violations.extend(furniture_overlaps(scene, &furniture, &walls, cfg.tolerance));
     violations.extend(outside_floor(scene, cfg.tolerance));
@@ -275,6 +290,60 @@ pub(super) fn support(human: &Human, furniture: &[Solid], limit: f64) -> Vec<Vio
                 frame: Some(f),
                 frames: Some([span.start, span.end]),
                 depth: if missing.is_finite() { missing } else { -1.0 },
+            });
+        }
+    }
+    out
+}
+
+/// Feet with nothing under them ([`CheckConfig::max_flight_seconds`]): runs of frames in which
+/// a person walks, stands or touches (not sitting or lying, whose feet may hang) and the lowest
+/// point of their feet (ankles and toes less their bones' radius) is more than `limit` above the
+/// floor and above the top of every piece under it, longer than `max_flight` seconds. One
+/// violation per run, at its highest frame; `depth` is that height over what is under the foot.
+pub(super) fn footing(human: &Human, furniture: &[Solid], limit: f64, max_flight: f64) -> Vec<Violation> {
+    let sk = &human.skeleton;
+    let feet: Vec<usize> =
+        ["left_ankle", "left_toe", "right_ankle", "right_toe"].iter().filter_map(|n| sk.joint(n)).collect();
+    if feet.is_empty() {
+        return Vec::new();
+    }
+    let n = human.frames.len();
+    let mut standing = vec![true; n];
+    for span in human.actions.iter().filter(|s| matches!(s.action, Action::Sit | Action::Lie)) {
+        standing[span.start.min(n)..span.end.min(n)].iter_mut().for_each(|s| *s = false);
+    }
+    let off = |f: usize| -> f64 {
+        let (p, z) = lowest_under(human, f, &feet);
+        let gap = gap_below(p, z, furniture).min(z);
+        if gap > limit { gap } else { 0.0 }
+    };
+    let longest = (max_flight * human.fps).floor() as usize;
+    let mut out = Vec::new();
+    // The run of frames off the floor so far: its start, its highest frame and that height.
+    let mut run: Option<(usize, usize, f64)> = None;
+    for f in 0..=n {
+        let height = if f < n && standing[f] { off(f) } else { 0.0 };
+        if height > 0.0 {
+            run = match run {
+                Some((start, _, h)) if height > h => Some((start, f, height)),
+                Some(r) => Some(r),
+                None => Some((f, f, height)),
+            };
+            continue;
+        }
+        if let Some((start, top, h)) = run.take()
+            && f - start > longest
+        {
+            out.push(Violation {
+                kind: ViolationKind::Unsupported,
+                human: Some(human.id.clone()),
+                bone: Some("feet".to_string()),
+                object: None,
+                other: None,
+                frame: Some(top),
+                frames: Some([start, f]),
+                depth: h,
             });
         }
     }

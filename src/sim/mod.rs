@@ -14,7 +14,9 @@ mod solids;
 mod stability;
 mod violation;
 
-pub use check::{CheckConfig, CheckReport, capsule_depth, capsule_depth_beyond, check_scene, people_in_walls};
+pub use check::{
+    CheckConfig, CheckReport, capsule_depth, capsule_depth_beyond, check_scene, people_in_walls, people_off_the_floor,
+};
 #[cfg(feature = "mujoco")]
 pub use mujoco::mujoco_replay;
 pub use physics::SimPhysics;

@@ -8,7 +8,8 @@ use serde::{Deserialize, Serialize};
 pub enum ViolationKind {
     /// A human bone deeper than the tolerance in furniture or a wall.
     Penetration,
-    /// A sitting or lying human without a surface under it, or a touching hand far from furniture.
+    /// A sitting or lying human without a surface under it, a touching hand far from furniture, or
+    /// feet off the floor and every piece for longer than a flight (`bone` "feet").
     Unsupported,
     /// Two pieces of furniture inside each other.
     ObjectOverlap,

@@ -167,6 +167,33 @@ fn place_auto_keeps_several_clips_apart_and_clear_of_a_clip_placed_by_hand() {
 }
 
 #[test]
+fn a_clip_that_climbs_onto_something_is_warned_about_at_import_and_failed_by_the_check() {
+    // CMU 01_03 climbs a playground structure: from about 3.4 s to 11.4 s the feet are up to
+    // 0.8 m above the floor, on something no piece of ours is for.
+    let dir = tempfile::tempdir().unwrap();
+    let file = clip("cmu_01_03.bvh");
+    let out = dir.path().join("climb.json");
+    let import = |trim: &[&str]| {
+        let args = ["--room", "bedroom", "--floor", "5x4", "--place", "auto", "--out", out.to_str().unwrap()];
+        shade_sim(&[&["import-motion", file.to_str().unwrap()][..], &args, trim].concat())
+    };
+    let o = import(&[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert!(err.contains("h0's feet are off the floor at frames 103–341 (3.43–11.37 s; 0.80 m up"), "{err}");
+    let o = shade_sim(&["--json", "check", "--no-stability", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    let report: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let feet: Vec<&serde_json::Value> =
+        report[0]["violations"].as_array().unwrap().iter().filter(|v| v["bone"] == "feet").collect();
+    assert_eq!(feet.len(), 1, "{report}");
+    assert_eq!(feet[0]["frames"], serde_json::json!([103, 341]));
+    // The walk to the end and the last touch, from 11.4 s: on the floor, no warning.
+    let o = import(&["--trim", "11.4:"]);
+    assert!(o.status.success() && !stderr(&o).contains("off the floor"), "{}", stderr(&o));
+}
+
+#[test]
 fn a_trim_outside_the_clip_is_one_line_and_exit_2() {
     let dir = tempfile::tempdir().unwrap();
     let file = clip("freebvh_walk.bvh");

@@ -3,8 +3,8 @@
 use glam::DVec2;
 use shade_sim::data::{Rng, contact_pose, layout::Placed};
 use shade_sim::geom::Polyline;
-use shade_sim::human::{Body, Motion, lie, sit};
-use shade_sim::scene::{Action, Category, FloorPlan, Object, RoomType, Scene};
+use shade_sim::human::{Body, Motion, lie, sit, stand};
+use shade_sim::scene::{Action, ActionSpan, Category, FloorPlan, Object, RoomType, Scene};
 use shade_sim::sim::{CheckConfig, ViolationKind, check_scene};
 
 fn room() -> Scene {
@@ -94,6 +94,54 @@ fn the_floor_holds_a_person_sitting_or_lying_on_it_and_a_few_centimetres_above_i
     assert_eq!(hold(sit(&body, at, 0.08, 0.0), Action::Sit), vec![ViolationKind::Unsupported]);
     // The conditioning calls a body resting on the floor what the check does.
     assert_eq!(shade_sim::human::FLOOR_REST, CheckConfig::default().support_distance);
+}
+
+/// A person of the default body standing at (2.5, 2.0) for `frames` frames at 30 fps, lifted by
+/// `lift` m in the frames `up`.
+fn lifted_stander(frames: usize, up: std::ops::Range<usize>, lift: f64) -> shade_sim::scene::Human {
+    let body = Body::default();
+    let pose = stand(&body, DVec2::new(2.5, 2.0), 0.0);
+    let frame = |z: f64| -> Vec<[f64; 3]> { pose.0.iter().map(|q| [q.x, q.y, q.z + z]).collect() };
+    shade_sim::scene::Human {
+        id: "h0".into(),
+        skeleton: body.skeleton(),
+        fps: 30.0,
+        frames: (0..frames).map(|f| frame(if up.contains(&f) { lift } else { 0.0 })).collect(),
+        actions: vec![ActionSpan { start: 0, end: frames, action: Action::Stand }],
+    }
+}
+
+#[test]
+fn feet_off_the_floor_longer_than_a_flight_are_unsupported_unless_a_piece_holds_them() {
+    let cfg = CheckConfig { stability: false, ..CheckConfig::default() };
+    let check = |human, objects: Vec<Object>| {
+        let mut s = room();
+        s.humans.push(human);
+        s.objects = objects;
+        check_scene(&s, &cfg).violations
+    };
+    // On the floor throughout: clean.
+    assert_eq!(check(lifted_stander(60, 0..0, 0.3), vec![]), vec![]);
+    // 0.3 m up for 1 s (frames 10–40): one violation over that run, as high as the lift.
+    let found = check(lifted_stander(60, 10..40, 0.3), vec![]);
+    assert_eq!(found.len(), 1, "{found:?}");
+    let v = &found[0];
+    assert_eq!((v.kind, v.bone.as_deref(), v.frames), (ViolationKind::Unsupported, Some("feet"), Some([10, 40])));
+    assert!((10..40).contains(&v.frame.unwrap()) && (v.depth - 0.3).abs() < 0.02, "{v:?}");
+    // Up for 0.4 s (a jump's flight; the limit is 0.5 s = 15 frames) and for exactly 15 frames: clean.
+    assert_eq!(check(lifted_stander(60, 10..22, 0.3), vec![]), vec![]);
+    assert_eq!(check(lifted_stander(60, 10..25, 0.3), vec![]), vec![]);
+    assert_eq!(check(lifted_stander(60, 10..26, 0.3), vec![]).len(), 1);
+    // Standing for 1 s on a 0.3 m high piece under the feet: held.
+    let step = object("o0", Category::CoffeeTable, [2.5, 2.0], [0.8, 0.8, 0.3], 0.0);
+    let on_it = check(lifted_stander(60, 10..40, 0.3), vec![step.clone()]);
+    assert!(on_it.iter().all(|v| v.kind != ViolationKind::Unsupported), "{on_it:?}");
+    // The warning for an input names the run in frames and seconds.
+    let mut input = room();
+    input.humans.push(lifted_stander(60, 10..40, 0.3));
+    let warned = shade_sim::pipeline::off_the_floor_warnings(&input, &cfg);
+    assert_eq!(warned.len(), 1, "{warned:?}");
+    assert!(warned[0].starts_with("h0's feet are off the floor at frames 10–40 (0.33–1.33 s; 0.30 m up"), "{warned:?}");
 }
 
 #[test]
