@@ -322,8 +322,9 @@ pub(super) fn footing(human: &Human, furniture: &[Solid], limit: f64, max_flight
     let mut out = Vec::new();
     // The run of frames off the floor so far: its start, its highest frame and that height.
     let mut run: Option<(usize, usize, f64)> = None;
-    for f in 0..=n {
-        let height = if f < n && standing[f] { off(f) } else { 0.0 };
+    // How far each frame's feet are off (0 while held or sitting), and a last 0 that ends a run.
+    let heights = standing.iter().enumerate().map(|(f, &s)| if s { off(f) } else { 0.0 }).chain([0.0]);
+    for (f, height) in heights.enumerate() {
         if height > 0.0 {
             run = match run {
                 Some((start, _, h)) if height > h => Some((start, f, height)),
