@@ -1,9 +1,9 @@
 //! The one way from inputs to checked layouts, for the command line and library users alike:
 //! sample with the generator (guidance during sampling), repair each sample ([`crate::repair`]),
 //! `check` it ([`crate::sim`]) and, with `require_clean`, resample with new seeds until each input
-//! has its layouts or the attempts are spent. An input whose people are in a wall (`check` fails
-//! it whatever the layout, [`people_in_walls`]) is not resampled: its layouts are sampled once, and
-//! under `require_clean` none are kept.
+//! has its layouts or the attempts are spent. An input whose people are in a wall or stand on
+//! nothing (`check` fails it whatever the layout, [`people_in_walls`], [`people_off_the_floor`]) is
+//! not resampled: its layouts are sampled once, and under `require_clean` none are kept.
 //!
 //! Inputs of several room types go through [`make_grouped_layouts`]: each type's inputs with its
 //! own generator, seeds numbered within the type ([`room_groups`]), so the command line's folder
@@ -376,6 +376,11 @@ pub fn make_layouts(
     } else {
         vec![Vec::new(); inputs.len()]
     };
+    // People standing on nothing: the free space under their feet keeps pieces away from there.
+    let off_the_floor: Vec<bool> = match opts.require_clean {
+        true => inputs.par_iter().map(|s| !people_off_the_floor(s, &opts.check).is_empty()).collect(),
+        false => vec![false; inputs.len()],
+    };
     let mut out = Layouts {
         kept: vec![Vec::new(); inputs.len()],
         sampled: 0,
@@ -384,8 +389,9 @@ pub fn make_layouts(
         rejected: vec![Rejections::default(); inputs.len()],
     };
     for round in 0..rounds {
-        // No round makes a layout pass for people in a wall: they get the first round's samples only.
-        let hopeless = |i: usize| round > 0 && !out.people_in_walls[i].is_empty();
+        // No round makes a layout pass for people in a wall or standing on nothing: they get the
+        // first round's samples only.
+        let hopeless = |i: usize| round > 0 && (!out.people_in_walls[i].is_empty() || off_the_floor[i]);
         let wanted: Vec<usize> =
             (0..inputs.len()).filter(|&i| out.kept[i].len() < opts.samples && !hopeless(i)).collect();
         if wanted.is_empty() {

@@ -188,6 +188,15 @@ fn a_clip_that_climbs_onto_something_is_warned_about_at_import_and_failed_by_the
         report[0]["violations"].as_array().unwrap().iter().filter(|v| v["bone"] == "feet").collect();
     assert_eq!(feet.len(), 1, "{report}");
     assert_eq!(feet[0]["frames"], serde_json::json!([103, 341]));
+    // generate says so before sampling and, as for people in a wall, samples one round, not four.
+    let furnished = dir.path().join("furnished");
+    let args = ["--samples", "1", "--attempts", "4", "--require-clean", "--out", furnished.to_str().unwrap()];
+    let o =
+        shade_sim(&[&["--no-progress", "--json", "generate", "--input", out.to_str().unwrap()][..], &args].concat());
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("h0's feet are off the floor at frames 103–341"), "{}", stderr(&o));
+    let report: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!((report["sampled"].as_u64(), report["inputs_without_clean_layout"].as_u64()), (Some(1), Some(1)));
     // The walk to the end and the last touch, from 11.4 s: on the floor, no warning.
     let o = import(&["--trim", "11.4:"]);
     assert!(o.status.success() && !stderr(&o).contains("off the floor"), "{}", stderr(&o));
