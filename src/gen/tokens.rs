@@ -5,7 +5,8 @@
 //! Centres are relative to the room window's centre. The x and y bounds are made symmetric and equal
 //! (±the largest |x| or |y| seen), so rotating or mirroring a room about the window centre — the
 //! training augmentation — maps tokens to tokens. Decoding snaps each object's height to what every
-//! training scene has: floor pieces stand on the floor, lamps hang from the ceiling.
+//! training scene has: floor pieces stand on the floor, lamps hang from the ceiling, and nothing
+//! reaches through the ceiling (a piece taller than the room is cut to its height).
 
 use super::ModelConfig;
 use crate::data::SplitStats;
@@ -174,7 +175,9 @@ pub fn decode_slots(
         let Some(&category) = categories.get(class) else { continue };
         let v = |k: usize| (t[k] as f64).clamp(-1.0, 1.0);
         let c = bounds.unscale_center([v(0), v(1), v(2)]);
-        let size = bounds.unscale_size([v(3), v(4), v(5)]).map(|s| s.max(0.02));
+        let [w, d, h] = bounds.unscale_size([v(3), v(4), v(5)]).map(|s| s.max(0.02));
+        // No training piece reaches through its ceiling: one taller than the room is cut to it.
+        let size = [w, d, h.min(ceiling).max(0.02)];
         let z = if category.is_hanging() { ceiling - size[2] * 0.5 } else { size[2] * 0.5 };
         let yaw = (t[7] as f64).atan2(t[6] as f64);
         let object = Object {
@@ -242,6 +245,29 @@ mod tests {
                 assert_eq!(weights.len(), cfg.slots() * dim);
             }
         }
+    }
+
+    #[test]
+    fn a_piece_taller_than_the_room_is_cut_to_the_ceiling_and_lamps_hang_from_it() {
+        let room = RoomType::Bedroom;
+        let scenes: Vec<Scene> = (0..20).map(|i| generate_room(room, 3, i, false).scene).collect();
+        let (bounds, cfg) = (bounds_of(&scenes), ModelConfig::tiny(room));
+        let scene = scenes.iter().find(|s| s.objects.iter().any(|o| o.size[2] > 2.0)).expect("a tall piece");
+        let window = RoomWindow::around(room.window_side(), &scene.floor_plan.polygon());
+        let (tokens, _) = encode(scene, window.center, &[], &bounds, &cfg);
+        // The same tokens in a 1.5 m high room: every floor piece ends at or under 1.5 m, the
+        // shorter ones as they were; a lamp hangs from 1.5 m.
+        let low = decode(&tokens, window.center, 1.5, &bounds, &cfg);
+        let high = decode(&tokens, window.center, scene.floor_plan.height, &bounds, &cfg);
+        for (a, b) in low.iter().zip(&high) {
+            let top = a.center[2] + a.size[2] * 0.5;
+            assert!(top <= 1.5 + 1e-9 && a.center[2] - a.size[2] * 0.5 >= -1e-9, "{a:?}");
+            assert!((a.size[2] - b.size[2].min(1.5)).abs() < 1e-9, "{a:?} {b:?}");
+            if a.category.is_hanging() {
+                assert!((top - 1.5).abs() < 1e-9, "{a:?}");
+            }
+        }
+        assert!(high.iter().any(|o| o.size[2] > 1.5), "the room has a piece to cut");
     }
 
     #[test]

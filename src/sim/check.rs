@@ -110,6 +110,7 @@ pub fn check_scene(scene: &Scene, cfg: &CheckConfig) -> CheckReport {
         violations.extend(footing(human, &furniture, cfg.support_distance, cfg.max_flight_seconds));
     }
     violations.extend(furniture_overlaps(scene, &furniture, &walls, cfg.tolerance));
+    violations.extend(through_ceiling(scene, cfg.tolerance));
     violations.extend(outside_floor(scene, cfg.tolerance));
     if cfg.stability {
         violations.extend(unstable_objects(scene, cfg));
@@ -392,6 +393,29 @@ fn furniture_overlaps(scene: &Scene, furniture: &[Solid], walls: &[Solid], toler
             frame: None,
             frames: None,
             depth: d,
+        })
+        .collect()
+}
+
+/// Pieces whose top is above the ceiling (the floor plan's height) by more than the tolerance, as
+/// pieces in a wall (`object_wall`, the other being `"ceiling"`): a wardrobe taller than a low room.
+fn through_ceiling(scene: &Scene, tolerance: f64) -> Vec<Violation> {
+    let ceiling = scene.floor_plan.height;
+    scene
+        .objects
+        .iter()
+        .filter_map(|o| {
+            let above = o.center[2] + o.size[2] * 0.5 - ceiling;
+            (above > tolerance).then(|| Violation {
+                kind: ViolationKind::ObjectWall,
+                human: None,
+                bone: None,
+                object: Some(o.id.clone()),
+                other: Some("ceiling".to_string()),
+                frame: None,
+                frames: None,
+                depth: above,
+            })
         })
         .collect()
 }

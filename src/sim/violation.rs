@@ -13,7 +13,7 @@ pub enum ViolationKind {
     Unsupported,
     /// Two pieces of furniture inside each other.
     ObjectOverlap,
-    /// A piece of furniture inside a wall.
+    /// A piece of furniture inside a wall, or through the ceiling (`other` "ceiling").
     ObjectWall,
     /// A piece of furniture outside the floor plan.
     OutsideFloor,

@@ -145,6 +145,22 @@ fn feet_off_the_floor_longer_than_a_flight_are_unsupported_unless_a_piece_holds_
 }
 
 #[test]
+fn a_wardrobe_taller_than_the_room_is_in_its_ceiling() {
+    let mut s = room();
+    s.floor_plan.height = 2.3;
+    s.objects.push(object("o0", Category::Wardrobe, [1.0, 3.65], [1.2, 0.6, 2.4], std::f64::consts::PI));
+    s.objects.push(object("o1", Category::Wardrobe, [3.0, 3.65], [1.2, 0.6, 2.31], std::f64::consts::PI));
+    let r = check_scene(&s, &CheckConfig { stability: false, ..CheckConfig::default() });
+    assert_eq!(r.violations.len(), 1, "{:?}", r.violations);
+    let v = &r.violations[0];
+    assert_eq!(
+        (v.kind, v.object.as_deref(), v.other.as_deref()),
+        (ViolationKind::ObjectWall, Some("o0"), Some("ceiling"))
+    );
+    assert!((v.depth - 0.1).abs() < 1e-9, "{v:?}");
+}
+
+#[test]
 fn legs_under_a_dining_table_are_clean() {
     let mut s = room();
     s.objects.push(object("o0", Category::DiningTable, [2.5, 2.0], [1.6, 0.9, 0.75], 0.0));
