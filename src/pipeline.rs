@@ -258,22 +258,31 @@ pub fn import_placed(clips: &[(PathBuf, Clip)], opts: &ImportOptions, auto: &[bo
     Ok(Imported { scene, reports, places })
 }
 
-/// The deepest place where a body of an imported `scene` reaches into a wall, as `check` finds
-/// it, as an error naming its file (`files[k]` made human k): the frame, its time, the bone, the
-/// depth and the floor-plan edge. Such an input fails `check` whatever the layout, although the
-/// pelvis and ankles that `motion::import_clip` tests are inside the floor (an arm swung out, a
-/// shoulder along the wall).
+/// The deepest place where a body of an imported `scene` reaches into a wall or the ceiling, as
+/// `check` finds it, as an error naming its file (`files[k]` made human k): the frame, its time,
+/// the bone, the depth and the floor-plan edge (or the ceiling). Such an input fails `check`
+/// whatever the layout, although the pelvis and ankles that `motion::import_clip` tests are inside
+/// the floor (an arm swung out, a shoulder along the wall, a head above a low room's height).
 fn body_in_a_wall(scene: &Scene, files: &[PathBuf], fps: f64) -> Option<MotionError> {
     let walls = people_in_walls(scene, &CheckConfig::default());
     let v = walls.iter().max_by(|a, b| a.depth.total_cmp(&b.depth))?;
     let human = scene.humans.iter().position(|h| Some(&h.id) == v.human.as_ref()).unwrap_or(0);
     let frame = v.frame.unwrap_or(0);
-    let edge = v.object.as_deref().and_then(|o| o.strip_prefix("wall")).unwrap_or("?");
     let bone = v.bone.as_deref().unwrap_or("body").replace('_', " ").replace('-', "–");
+    let (inside, remedy) = match v.object.as_deref() {
+        Some("ceiling") => (
+            format!("the ceiling ({:.2} m high)", scene.floor_plan.height),
+            "give the room a higher --height, or leave the frame out with --trim",
+        ),
+        other => (
+            format!("the wall of floor-plan edge {}", other.and_then(|o| o.strip_prefix("wall")).unwrap_or("?")),
+            "place the clip with --place, or leave the frame out with --trim",
+        ),
+    };
     Some(MotionError::invalid(
         files.get(human).cloned().unwrap_or_default(),
         format!(
-            "frame {frame} ({:.2} s): the {bone} is {:.2} m inside the wall of floor-plan edge {edge}; place the clip with --place, or leave the frame out with --trim",
+            "frame {frame} ({:.2} s): the {bone} is {:.2} m inside {inside}; {remedy}",
             frame as f64 / fps,
             v.depth
         ),
@@ -322,7 +331,9 @@ pub fn place_to_fit(
         tried.places[i] = Some(place);
         let Ok((human, _)) = import_clip(clip, i, &tried) else { continue };
         let alone = Scene { humans: vec![human], ..Scene::new(opts.room_type, opts.floor.clone()) };
-        if !people_in_walls(&alone, &CheckConfig::default()).is_empty() {
+        // No placement moves a head out of the ceiling: that is `import_placed`'s error to give.
+        let in_walls = people_in_walls(&alone, &CheckConfig::default());
+        if in_walls.iter().any(|v| v.object.as_deref() != Some("ceiling")) {
             continue;
         }
         let human = alone.humans.into_iter().next().unwrap_or_else(|| unreachable!("one person"));

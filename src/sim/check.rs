@@ -82,10 +82,43 @@ fn owner_id(scene: &Scene, owner: Owner) -> String {
 }
 
 /// The violations no layout can mend: the people's bones deeper than `cfg.tolerance` in the walls
-/// (an input whose people stand or sit in a wall has no layout that passes [`check_scene`]).
+/// or the ceiling (an input whose people stand or sit in a wall, or whose heads are above the
+/// room's height, has no layout that passes [`check_scene`]).
 pub fn people_in_walls(scene: &Scene, cfg: &CheckConfig) -> Vec<Violation> {
     let walls = wall_solids(scene);
-    scene.humans.iter().flat_map(|h| penetrations(scene, h, &walls, cfg.tolerance)).collect()
+    let bodies = scene.humans.iter().flat_map(|h| penetrations(scene, h, &walls, cfg.tolerance));
+    bodies.chain(scene.humans.iter().filter_map(|h| through_the_ceiling(scene, h, cfg.tolerance))).collect()
+}
+
+/// A person's bones above the ceiling (the floor plan's height) by more than `tolerance`: one
+/// penetration of `"ceiling"` over the frames where any is, at the deepest bone and frame.
+fn through_the_ceiling(scene: &Scene, human: &Human, tolerance: f64) -> Option<Violation> {
+    let ceiling = scene.floor_plan.height;
+    let mut deepest: Option<(f64, usize, usize)> = None;
+    let (mut first, mut last) = (usize::MAX, 0);
+    for f in 0..human.frames.len() {
+        for (k, bone) in human.skeleton.bones.iter().enumerate() {
+            let top = human.joint_at(f, bone.a).z.max(human.joint_at(f, bone.b).z) + bone.radius;
+            let above = top - ceiling;
+            if above > tolerance {
+                (first, last) = (first.min(f), f);
+                if deepest.is_none_or(|(d, _, _)| above > d) {
+                    deepest = Some((above, f, k));
+                }
+            }
+        }
+    }
+    let (depth, frame, bone) = deepest?;
+    Some(Violation {
+        kind: ViolationKind::Penetration,
+        human: Some(human.id.clone()),
+        bone: Some(human.skeleton.bone_name(bone)),
+        object: Some("ceiling".to_string()),
+        other: None,
+        frame: Some(frame),
+        frames: Some([first, last + 1]),
+        depth,
+    })
 }
 
 /// The people of `scene` whose feet are off the floor for longer than a flight in an empty room
@@ -106,6 +139,7 @@ pub fn check_scene(scene: &Scene, cfg: &CheckConfig) -> CheckReport {
     for human in &scene.humans {
         frames += human.frames.len();
         violations.extend(penetrations(scene, human, &solids, cfg.tolerance));
+        violations.extend(through_the_ceiling(scene, human, cfg.tolerance));
         violations.extend(support(human, &furniture, cfg.support_distance));
         violations.extend(footing(human, &furniture, cfg.support_distance, cfg.max_flight_seconds));
     }

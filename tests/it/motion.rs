@@ -130,6 +130,17 @@ fn place_auto_finds_where_a_clip_fits_and_says_so_when_none_does() {
     let o = shade_sim(&["check", "--no-stability", out.to_str().unwrap()]);
     assert!(o.status.success(), "in the room and out of its walls: {}", stdout(&o));
     std::fs::remove_file(&out).unwrap();
+    // A room lower than the person: no placement helps, and the error says the ceiling.
+    let args =
+        ["--room", "living", "--floor", "5x4", "--height", "1.5", "--place", "auto", "--out", out.to_str().unwrap()];
+    let o = shade_sim(&[&["import-motion", clip("freebvh_walk.bvh").to_str().unwrap()][..], &args].concat());
+    assert_eq!(o.status.code(), Some(2));
+    let err = stderr(&o);
+    assert!(
+        err.contains("freebvh_walk.bvh: frame 2 (0.07 s): the neck–head is 0.31 m inside the ceiling (1.50 m high)"),
+        "{err}"
+    );
+    assert!(!out.exists());
     let o = run("2x2");
     assert_eq!(o.status.code(), Some(2));
     let err = stderr(&o);

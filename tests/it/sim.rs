@@ -161,6 +161,25 @@ fn a_wardrobe_taller_than_the_room_is_in_its_ceiling() {
 }
 
 #[test]
+fn a_head_above_a_low_room_is_in_its_ceiling() {
+    let cfg = CheckConfig { stability: false, ..CheckConfig::default() };
+    let mut s = room();
+    s.humans.push(lifted_stander(10, 0..0, 0.0));
+    assert_eq!(check_scene(&s, &cfg).violations, vec![]);
+    let head = s.humans[0].skeleton.bones.iter().map(|b| b.radius).fold(0.0, f64::max);
+    let top = (0..19).map(|j| s.humans[0].joint_at(0, j).z).fold(0.0, f64::max);
+    assert!(top > 1.5 && top + head < 2.7, "{top}");
+    s.floor_plan.height = 1.5;
+    let found = check_scene(&s, &cfg).violations;
+    assert_eq!(found.len(), 1, "{found:?}");
+    let v = &found[0];
+    assert_eq!((v.kind, v.object.as_deref(), v.frames), (ViolationKind::Penetration, Some("ceiling"), Some([0, 10])));
+    assert!(v.depth > top - 1.5 && v.depth <= top + head - 1.5 + 1e-9, "{v:?}");
+    // No layout mends it: it is one of the input's own.
+    assert_eq!(shade_sim::sim::people_in_walls(&s, &cfg).len(), 1);
+}
+
+#[test]
 fn legs_under_a_dining_table_are_clean() {
     let mut s = room();
     s.objects.push(object("o0", Category::DiningTable, [2.5, 2.0], [1.6, 0.9, 0.75], 0.0));
