@@ -14,7 +14,7 @@
 //! layouts hit ([`Rejections`]), so that an input without a clean layout is told why. For the
 //! import of motion ([`crate::motion`]) it has [`import_placed`], which the command line and
 //! Python share: the search for a placement that keeps a clip inside the room and apart from the
-//! other people ([`place_to_fit`]), and the check's refusal of a body in a wall.
+//! other people ([`place_to_fit`]), and the check's refusal of a body in a wall or the ceiling.
 
 use crate::generator::{GenError, Generator, GuidanceConfig};
 use crate::human::{ContactBox, inside_each_other_at_once, seats_in_the_way};
@@ -23,7 +23,8 @@ use crate::physics::Physics;
 use crate::repair::{RepairConfig, RepairReport, repair_scene};
 use crate::scene::{FloorPlan, Human, RoomType, Scene};
 use crate::sim::{
-    CheckConfig, CheckReport, SimPhysics, Violation, ViolationKind, check_scene, people_in_walls, people_off_the_floor,
+    CEILING, CheckConfig, CheckReport, SimPhysics, Violation, ViolationKind, check_scene, people_in_walls,
+    people_off_the_floor,
 };
 use rayon::prelude::*;
 use std::borrow::Borrow;
@@ -270,7 +271,7 @@ fn body_in_a_wall(scene: &Scene, files: &[PathBuf], fps: f64) -> Option<MotionEr
     let frame = v.frame.unwrap_or(0);
     let bone = v.bone.as_deref().unwrap_or("body").replace('_', " ").replace('-', "–");
     let (inside, remedy) = match v.object.as_deref() {
-        Some("ceiling") => (
+        Some(CEILING) => (
             format!("the ceiling ({:.2} m high)", scene.floor_plan.height),
             "give the room a higher --height, or leave the frame out with --trim",
         ),
@@ -330,13 +331,12 @@ pub fn place_to_fit(
     for &place in &candidates {
         tried.places[i] = Some(place);
         let Ok((human, _)) = import_clip(clip, i, &tried) else { continue };
-        let alone = Scene { humans: vec![human], ..Scene::new(opts.room_type, opts.floor.clone()) };
+        let alone = Scene { humans: vec![human.clone()], ..Scene::new(opts.room_type, opts.floor.clone()) };
         // No placement moves a head out of the ceiling: that is `import_placed`'s error to give.
         let in_walls = people_in_walls(&alone, &CheckConfig::default());
-        if in_walls.iter().any(|v| v.object.as_deref() != Some("ceiling")) {
+        if in_walls.iter().any(|v| v.object.as_deref() != Some(CEILING)) {
             continue;
         }
-        let human = alone.humans.into_iter().next().unwrap_or_else(|| unreachable!("one person"));
         if others.iter().all(|o| apart(&human, o, &opts.floor, tolerance)) {
             return Ok((place, human));
         }

@@ -81,18 +81,22 @@ fn owner_id(scene: &Scene, owner: Owner) -> String {
     }
 }
 
+/// What violations name the ceiling by (the floor plan's height): a person's bone in it is a
+/// penetration of it (`object`), a piece through it is in it as in a wall (`other`).
+pub const CEILING: &str = "ceiling";
+
 /// The violations no layout can mend: the people's bones deeper than `cfg.tolerance` in the walls
 /// or the ceiling (an input whose people stand or sit in a wall, or whose heads are above the
 /// room's height, has no layout that passes [`check_scene`]).
 pub fn people_in_walls(scene: &Scene, cfg: &CheckConfig) -> Vec<Violation> {
     let walls = wall_solids(scene);
     let bodies = scene.humans.iter().flat_map(|h| penetrations(scene, h, &walls, cfg.tolerance));
-    bodies.chain(scene.humans.iter().filter_map(|h| through_the_ceiling(scene, h, cfg.tolerance))).collect()
+    bodies.chain(scene.humans.iter().filter_map(|h| body_through_ceiling(scene, h, cfg.tolerance))).collect()
 }
 
 /// A person's bones above the ceiling (the floor plan's height) by more than `tolerance`: one
 /// penetration of `"ceiling"` over the frames where any is, at the deepest bone and frame.
-fn through_the_ceiling(scene: &Scene, human: &Human, tolerance: f64) -> Option<Violation> {
+fn body_through_ceiling(scene: &Scene, human: &Human, tolerance: f64) -> Option<Violation> {
     let ceiling = scene.floor_plan.height;
     let mut deepest: Option<(f64, usize, usize)> = None;
     let (mut first, mut last) = (usize::MAX, 0);
@@ -113,7 +117,7 @@ fn through_the_ceiling(scene: &Scene, human: &Human, tolerance: f64) -> Option<V
         kind: ViolationKind::Penetration,
         human: Some(human.id.clone()),
         bone: Some(human.skeleton.bone_name(bone)),
-        object: Some("ceiling".to_string()),
+        object: Some(CEILING.to_string()),
         other: None,
         frame: Some(frame),
         frames: Some([first, last + 1]),
@@ -139,12 +143,12 @@ pub fn check_scene(scene: &Scene, cfg: &CheckConfig) -> CheckReport {
     for human in &scene.humans {
         frames += human.frames.len();
         violations.extend(penetrations(scene, human, &solids, cfg.tolerance));
-        violations.extend(through_the_ceiling(scene, human, cfg.tolerance));
+        violations.extend(body_through_ceiling(scene, human, cfg.tolerance));
         violations.extend(support(human, &furniture, cfg.support_distance));
         violations.extend(footing(human, &furniture, cfg.support_distance, cfg.max_flight_seconds));
     }
     violations.extend(furniture_overlaps(scene, &furniture, &walls, cfg.tolerance));
-    violations.extend(through_ceiling(scene, cfg.tolerance));
+    violations.extend(pieces_through_ceiling(scene, cfg.tolerance));
     violations.extend(outside_floor(scene, cfg.tolerance));
     if cfg.stability {
         violations.extend(unstable_objects(scene, cfg));
@@ -433,7 +437,7 @@ fn furniture_overlaps(scene: &Scene, furniture: &[Solid], walls: &[Solid], toler
 
 /// Pieces whose top is above the ceiling (the floor plan's height) by more than the tolerance, as
 /// pieces in a wall (`object_wall`, the other being `"ceiling"`): a wardrobe taller than a low room.
-fn through_ceiling(scene: &Scene, tolerance: f64) -> Vec<Violation> {
+fn pieces_through_ceiling(scene: &Scene, tolerance: f64) -> Vec<Violation> {
     let ceiling = scene.floor_plan.height;
     scene
         .objects
@@ -445,7 +449,7 @@ fn through_ceiling(scene: &Scene, tolerance: f64) -> Vec<Violation> {
                 human: None,
                 bone: None,
                 object: Some(o.id.clone()),
-                other: Some("ceiling".to_string()),
+                other: Some(CEILING.to_string()),
                 frame: None,
                 frames: None,
                 depth: above,

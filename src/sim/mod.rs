@@ -15,7 +15,8 @@ mod stability;
 mod violation;
 
 pub use check::{
-    CheckConfig, CheckReport, capsule_depth, capsule_depth_beyond, check_scene, people_in_walls, people_off_the_floor,
+    CEILING, CheckConfig, CheckReport, capsule_depth, capsule_depth_beyond, check_scene, people_in_walls,
+    people_off_the_floor,
 };
 #[cfg(feature = "mujoco")]
 pub use mujoco::mujoco_replay;
