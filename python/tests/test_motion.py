@@ -136,8 +136,12 @@ def test_a_walk_through_where_a_seat_must_stand_is_a_user_warning(root):
 def test_a_clip_that_climbs_is_warned_about_and_a_room_lower_than_the_person_refused(root):
     # CMU 01_03 stands on playground bars for 8 s: no piece is for standing on.
     climb = shade_sim.import_motion([clip(root, "cmu_01_03.bvh")], "bedroom", (5, 4), place=["auto"])
-    with pytest.warns(UserWarning, match=r"input 0: h0's feet are off the floor at frames 103–341"):
+    with pytest.warns(UserWarning) as caught:
         layouts = shade_sim.generate(climb, seed=0, require_clean=True, attempts=2)
     assert layouts == []
+    messages = [str(w.message) for w in caught]
+    assert any("input 0: h0's feet are off the floor at frames 103–341" in m for m in messages), messages
+    # Sampled once, not once per attempt: no layout can hold the climber.
+    assert any("input 0: no clean layout in 1 samples" in m for m in messages), messages
     with pytest.raises(shade_sim.MotionError, match=r"the neck–head is 0.31 m inside the ceiling \(1.50 m high\)"):
         shade_sim.import_motion([clip(root, "freebvh_walk.bvh")], "bedroom", (5, 4), place=["auto"], height=1.5)
