@@ -10,7 +10,7 @@ use shade_sim::human::{people_meeting, seats_in_the_way};
 use shade_sim::motion::{ImportOptions, MotionError, Placement, Trim, Units, UpAxis, read_motion};
 use shade_sim::pipeline::{Imported, import_placed, off_the_floor_warnings};
 use shade_sim::scene::{ActionSpan, FloorPlan, validate_floor_plan};
-use shade_sim::sim::CheckConfig;
+use shade_sim::sim::{CheckConfig, people_off_the_floor};
 use std::path::{Path, PathBuf};
 
 #[derive(Debug, Args)]
@@ -197,6 +197,7 @@ pub fn run(args: &ImportMotionArgs, global: &GlobalArgs) -> anyhow::Result<ExitS
     for w in off_the_floor_warnings(&scene, &CheckConfig::default()) {
         tracing::warn!("{}: {w}", args.out.display());
     }
+    let off_the_floor = people_off_the_floor(&scene, &CheckConfig::default());
     let place_of = |i: usize| places[i].map(|p| [p.at.x, p.at.y, p.yaw_degrees]);
     if global.json {
         let rows: Vec<serde_json::Value> = reports
@@ -211,7 +212,9 @@ pub fn run(args: &ImportMotionArgs, global: &GlobalArgs) -> anyhow::Result<ExitS
                 })
             })
             .collect();
-        print_json(&serde_json::json!({ "out": args.out, "humans": rows, "people_meeting": meetings }))?;
+        print_json(
+            &serde_json::json!({ "out": args.out, "humans": rows, "people_meeting": meetings, "off_the_floor": off_the_floor }),
+        )?;
     } else if global.quiet == 0 {
         let mut text = String::new();
         for (i, (r, h)) in reports.iter().zip(&scene.humans).enumerate() {

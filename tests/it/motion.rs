@@ -192,6 +192,15 @@ fn a_clip_that_climbs_onto_something_is_warned_about_at_import_and_failed_by_the
     assert!(o.status.success(), "{}", stderr(&o));
     let err = stderr(&o);
     assert!(err.contains("h0's feet are off the floor at frames 103–341 (3.43–11.37 s; 0.80 m up"), "{err}");
+    // The same as data with --json: the check's violation.
+    let o = import(&["--json"]);
+    let report: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let off = &report["off_the_floor"];
+    assert_eq!(
+        (off[0]["bone"].as_str(), &off[0]["frames"]),
+        (Some("feet"), &serde_json::json!([103, 341])),
+        "{report}"
+    );
     let o = shade_sim(&["--json", "check", "--no-stability", out.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));
     let report: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
