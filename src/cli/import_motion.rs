@@ -30,16 +30,16 @@ pub struct ImportMotionArgs {
     pub out: PathBuf,
     /// Put a clip's start at X,Y (m) facing YAW_DEG (0 faces +y), or `auto`: the first of the
     /// plan's centre and a 5 × 5 grid, each facing four ways, that keeps the clip inside the floor
-    /// plan and out of its walls; once per motion, in order. Without it, a clip keeps its own
-    /// coordinates.
-    #[arg(long, value_name = "X,Y,YAW_DEG|auto", allow_negative_numbers = true)]
+    /// plan, out of its walls and apart from the clips placed before it; once per motion, in
+    /// order. Without it, a clip keeps its own coordinates. X may be negative (`-1,2,90`).
+    #[arg(long, value_name = "X,Y,YAW_DEG|auto", allow_hyphen_values = true)]
     pub place: Vec<String>,
     /// Frames per second of the humans written.
-    #[arg(long, default_value_t = 30.0)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 30.0)]
     pub fps: f64,
     /// The person's stature (m): the clip is scaled to it. Default: measured from the clip, units
     /// detected.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub stature: Option<f64>,
     /// Units of the files' positions.
     #[arg(long, value_enum, default_value_t = UnitsArg::Auto)]
@@ -48,10 +48,10 @@ pub struct ImportMotionArgs {
     #[arg(long, value_enum, default_value_t = UpArg::Auto)]
     pub up: UpArg,
     /// Frame rate of .npy arrays (which carry none).
-    #[arg(long, default_value_t = 30.0)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 30.0)]
     pub source_fps: f64,
     /// Ceiling height of a `WxD` floor (m).
-    #[arg(long, default_value_t = 2.8)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 2.8)]
     pub height: f64,
     /// A JSON list of spans `{"action": "sit", "start": 30, "end": 90}` (frames as written) that
     /// override the automatic labels; once per motion, in order.

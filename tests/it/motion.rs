@@ -262,6 +262,36 @@ fn automatic_labels_agree_with_the_hand_labels_of_the_real_clips_as_measured() {
 }
 
 #[test]
+fn a_place_with_negative_coordinates_is_read_and_negative_numbers_are_one_line_errors() {
+    // A plan centred on the origin: places left of it and below it are negative, and were taken
+    // for flags ("unexpected argument '-1.5,-0.5,90'" and clap's usage).
+    let dir = tempfile::tempdir().unwrap();
+    let plan = dir.path().join("plan.json");
+    std::fs::write(&plan, r#"{"polygon": [[-3, -2], [3, -2], [3, 2], [-3, 2]], "height": 2.8}"#).unwrap();
+    let out = dir.path().join("walk.json");
+    let walk = clip("freebvh_walk.bvh");
+    let run = |extra: &[&str]| {
+        let args = ["import-motion", walk.to_str().unwrap(), "--room", "bedroom", "--floor", plan.to_str().unwrap()];
+        shade_sim(&[&args[..], extra, &["--out", out.to_str().unwrap()]].concat())
+    };
+    let o = run(&["--place", "-1.5,-0.5,90"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let pelvis = body_frames(&Scene::load(&out).unwrap().humans[0]).unwrap()[0][Joint::Pelvis.index()];
+    assert!(pelvis.truncate().distance(DVec2::new(-1.5, -0.5)) < 1e-3, "{pelvis}");
+    std::fs::remove_file(&out).unwrap();
+    for (extra, want) in [
+        (["--fps", "-5"], "error: --fps: must be 1 to 1000 frames per second, not -5"),
+        (["--stature", "-1.7"], "error: --stature: must be 0.5 to 2.5 m, not -1.7"),
+    ] {
+        let o = run(&extra);
+        assert_eq!(o.status.code(), Some(2));
+        let err = stderr(&o);
+        assert!(err.starts_with(want) && err.lines().count() == 1, "{err}");
+        assert!(!out.exists());
+    }
+}
+
+#[test]
 fn a_trim_outside_the_clip_is_one_line_and_exit_2() {
     let dir = tempfile::tempdir().unwrap();
     let file = clip("freebvh_walk.bvh");
