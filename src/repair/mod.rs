@@ -11,7 +11,7 @@
 //! |---|---|---|
 //! | `settle` | contact boxes given to pieces that afford them (a real piece added for a box none can hold), seats turned and fitted to their people, pieces squared and put back against walls, rounds of moves: under their people, off paths, apart, inside | `settle`, `holding`, `completion`, `walls`, `gap` |
 //! | `relocate` | a piece holding nobody still in people's way moved to a free spot | `relocate`, `walls`, `gap` |
-//! | `fit_into_room` | a piece poking out of the floor plan is moved back or narrowed | `fit_into_room`, `narrowing`, `holding`, `gap` |
+//! | `fit_into_room` | a piece poking out of the floor plan is moved back or narrowed; one taller than the room is cut to the ceiling | `fit_into_room`, `narrowing`, `holding`, `gap` |
 //! | `fit_to_bodies` | a piece that bones still enter is moved, turned or reshaped a few centimetres at a time, everybody supported kept supported (a piece that holds people may become another category that affords what they do) | `fit_to_bodies`, `gap` |
 //! | `left_out` | a piece holding nobody that people still pass through is left out | `left_out` |
 //! | `overlaps` | overlaps that survive are narrowed away, or the smaller piece goes | `narrowing`, `gap` |
