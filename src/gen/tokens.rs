@@ -175,18 +175,18 @@ pub fn decode_slots(
         let Some(&category) = categories.get(class) else { continue };
         let v = |k: usize| (t[k] as f64).clamp(-1.0, 1.0);
         let c = bounds.unscale_center([v(0), v(1), v(2)]);
-        let [w, d, h] = bounds.unscale_size([v(3), v(4), v(5)]).map(|s| s.max(0.02));
-        // No training piece reaches through its ceiling: one taller than the room is cut to it.
-        let size = [w, d, h.min(ceiling).max(0.02)];
+        let size = bounds.unscale_size([v(3), v(4), v(5)]).map(|s| s.max(0.02));
         let z = if category.is_hanging() { ceiling - size[2] * 0.5 } else { size[2] * 0.5 };
         let yaw = (t[7] as f64).atan2(t[6] as f64);
-        let object = Object {
+        let mut object = Object {
             id: format!("o{}", objects.len()),
             category,
             center: [c[0] + window_center.x, c[1] + window_center.y, z],
             size,
             yaw: if yaw.is_finite() { yaw } else { 0.0 },
         };
+        // No training piece reaches through its ceiling: one taller than the room is cut to it.
+        object.cut_to_ceiling(ceiling);
         match objects.iter_mut().find(|(_, kept)| is_copy(&object, kept)) {
             Some((slots, _)) => slots.push(slot),
             None => objects.push((vec![slot], object)),

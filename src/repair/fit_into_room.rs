@@ -2,7 +2,7 @@
 //! the contact boxes it holds and inside; where it still does not fit, it is narrowed by what sticks
 //! out (within `narrowing`, [`narrow_by`]; at most `fit_into_room.cuts` cuts) if that makes it
 //! fit, an L-shaped room's inner corner included ([`worst_offence`]). A piece taller than the room
-//! is cut to the ceiling first, as decoding cuts the model's ([`under_the_ceiling`]).
+//! is cut to the ceiling first, as decoding cuts the model's (`Object::cut_to_ceiling`).
 
 use super::config::{RepairConfig, StepName};
 use super::helpers::{containment_shift, fits_inside, inside_push, narrow_by, shift, worst_offence};
@@ -34,7 +34,7 @@ fn fit_into_room(scene: &mut Scene, people: &Occupancy, config: &RepairConfig) -
     let mut narrowed = 0;
     let ceiling = scene.floor_plan.height;
     for i in 0..scene.objects.len() {
-        narrowed += usize::from(under_the_ceiling(&mut scene.objects[i], ceiling));
+        narrowed += usize::from(scene.objects[i].cut_to_ceiling(ceiling));
         if fits_inside(&scene.objects[i].obox(), &polygon, gap) {
             continue;
         }
@@ -67,41 +67,4 @@ fn fit_into_room(scene: &mut Scene, people: &Occupancy, config: &RepairConfig) -
         }
     }
     narrowed
-}
-
-/// Cuts a piece whose top is above `ceiling` to end there: a floor piece keeps standing on the
-/// floor, a hanging lamp keeps hanging from the ceiling. Whether it was cut.
-pub(super) fn under_the_ceiling(o: &mut crate::scene::Object, ceiling: f64) -> bool {
-    if o.center[2] + o.size[2] * 0.5 <= ceiling + 1e-9 {
-        return false;
-    }
-    o.size[2] = o.size[2].min(ceiling).max(0.02);
-    o.center[2] = if o.category.is_hanging() { ceiling - o.size[2] * 0.5 } else { o.size[2] * 0.5 };
-    true
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::scene::{Category, Object};
-
-    #[test]
-    fn a_piece_taller_than_the_room_is_cut_to_the_ceiling_standing_or_hanging() {
-        let piece = |category, height: f64, z: f64| Object {
-            id: "o0".into(),
-            category,
-            center: [1.0, 1.0, z],
-            size: [1.0, 0.6, height],
-            yaw: 0.0,
-        };
-        let mut wardrobe = piece(Category::Wardrobe, 2.4, 1.2);
-        assert!(under_the_ceiling(&mut wardrobe, 2.3));
-        assert_eq!((wardrobe.size[2], wardrobe.center[2]), (2.3, 1.15));
-        let mut lamp = piece(Category::PendantLamp, 0.5, 2.5);
-        assert!(under_the_ceiling(&mut lamp, 2.3));
-        assert_eq!((lamp.size[2], lamp.center[2]), (0.5, 2.05));
-        let mut low = piece(Category::Wardrobe, 2.0, 1.0);
-        assert!(!under_the_ceiling(&mut low, 2.3));
-        assert_eq!((low.size[2], low.center[2]), (2.0, 1.0));
-    }
 }
