@@ -91,38 +91,72 @@ pub const CEILING: &str = "ceiling";
 pub fn people_in_walls(scene: &Scene, cfg: &CheckConfig) -> Vec<Violation> {
     let walls = wall_solids(scene);
     let bodies = scene.humans.iter().flat_map(|h| penetrations(scene, h, &walls, cfg.tolerance));
-    bodies.chain(scene.humans.iter().filter_map(|h| body_through_ceiling(scene, h, cfg.tolerance))).collect()
+    bodies.chain(scene.humans.iter().flat_map(|h| body_through_ceiling(scene, h, cfg.tolerance))).collect()
 }
 
 /// A person's bones above the ceiling (the floor plan's height) by more than `tolerance`: one
-/// penetration of `"ceiling"` over the frames where any is, at the deepest bone and frame.
-fn body_through_ceiling(scene: &Scene, human: &Human, tolerance: f64) -> Option<Violation> {
+/// penetration of `"ceiling"` per run of frames where any is, at its deepest bone and frame.
+fn body_through_ceiling(scene: &Scene, human: &Human, tolerance: f64) -> Vec<Violation> {
     let ceiling = scene.floor_plan.height;
-    let mut deepest: Option<(f64, usize, usize)> = None;
-    let (mut first, mut last) = (usize::MAX, 0);
-    for f in 0..human.frames.len() {
-        for (k, bone) in human.skeleton.bones.iter().enumerate() {
-            let top = human.joint_at(f, bone.a).z.max(human.joint_at(f, bone.b).z) + bone.radius;
-            let above = top - ceiling;
-            if above > tolerance {
-                (first, last) = (first.min(f), f);
-                if deepest.is_none_or(|(d, _, _)| above > d) {
-                    deepest = Some((above, f, k));
-                }
+    // Per frame: how far the highest bone is above the ceiling beyond the tolerance (0: none), and which.
+    let deepest: Vec<(f64, usize)> = (0..human.frames.len())
+        .map(|f| {
+            let above = |k: usize| {
+                let bone = &human.skeleton.bones[k];
+                human.joint_at(f, bone.a).z.max(human.joint_at(f, bone.b).z) + bone.radius - ceiling
+            };
+            let (depth, k) = (0..human.skeleton.bones.len())
+                .map(|k| (above(k), k))
+                .fold((0.0, 0), |m, b| if b.0 > m.0 { b } else { m });
+            (if depth > tolerance { depth } else { 0.0 }, k)
+        })
+        .collect();
+    runs(deepest.iter().map(|d| d.0))
+        .into_iter()
+        .map(|r| Violation {
+            kind: ViolationKind::Penetration,
+            human: Some(human.id.clone()),
+            bone: Some(human.skeleton.bone_name(deepest[r.worst].1)),
+            object: Some(CEILING.to_string()),
+            other: None,
+            frame: Some(r.worst),
+            frames: Some([r.start, r.end]),
+            depth: r.amount,
+        })
+        .collect()
+}
+
+/// A run of consecutive frames in which a per-frame amount (a depth, a height) is above 0.
+struct Run {
+    /// First frame.
+    start: usize,
+    /// One past the last frame.
+    end: usize,
+    /// The frame where the amount is largest.
+    worst: usize,
+    /// That amount.
+    amount: f64,
+}
+
+/// The runs of `amounts` (one per frame; 0 where there is nothing), in frame order.
+fn runs(amounts: impl IntoIterator<Item = f64>) -> Vec<Run> {
+    let mut out = Vec::new();
+    let mut open: Option<Run> = None;
+    let mut frames = 0;
+    for (f, a) in amounts.into_iter().enumerate() {
+        frames = f + 1;
+        if a > 0.0 {
+            match &mut open {
+                Some(r) if a > r.amount => (r.worst, r.amount) = (f, a),
+                Some(_) => {}
+                None => open = Some(Run { start: f, end: f, worst: f, amount: a }),
             }
+        } else if let Some(r) = open.take() {
+            out.push(Run { end: f, ..r });
         }
     }
-    let (depth, frame, bone) = deepest?;
-    Some(Violation {
-        kind: ViolationKind::Penetration,
-        human: Some(human.id.clone()),
-        bone: Some(human.skeleton.bone_name(bone)),
-        object: Some(CEILING.to_string()),
-        other: None,
-        frame: Some(frame),
-        frames: Some([first, last + 1]),
-        depth,
-    })
+    out.extend(open.map(|r| Run { end: frames, ..r }));
+    out
 }
 
 /// The people of `scene` whose feet are off the floor for longer than a flight in an empty room
@@ -358,36 +392,22 @@ pub(super) fn footing(human: &Human, furniture: &[Solid], limit: f64, max_flight
         if gap > limit { gap } else { 0.0 }
     };
     let longest = (max_flight * human.fps).floor() as usize;
-    let mut out = Vec::new();
-    // The run of frames off the floor so far: its start, its highest frame and that height.
-    let mut run: Option<(usize, usize, f64)> = None;
-    // How far each frame's feet are off (0 while held or sitting), and a last 0 that ends a run.
-    let heights = standing.iter().enumerate().map(|(f, &s)| if s { off(f) } else { 0.0 }).chain([0.0]);
-    for (f, height) in heights.enumerate() {
-        if height > 0.0 {
-            run = match run {
-                Some((start, _, h)) if height > h => Some((start, f, height)),
-                Some(r) => Some(r),
-                None => Some((f, f, height)),
-            };
-            continue;
-        }
-        if let Some((start, top, h)) = run.take()
-            && f - start > longest
-        {
-            out.push(Violation {
-                kind: ViolationKind::Unsupported,
-                human: Some(human.id.clone()),
-                bone: Some("feet".to_string()),
-                object: None,
-                other: None,
-                frame: Some(top),
-                frames: Some([start, f]),
-                depth: h,
-            });
-        }
-    }
-    out
+    // How far each frame's feet are off (0 while held, sitting or lying).
+    let heights = standing.iter().enumerate().map(|(f, &s)| if s { off(f) } else { 0.0 });
+    runs(heights)
+        .into_iter()
+        .filter(|r| r.end - r.start > longest)
+        .map(|r| Violation {
+            kind: ViolationKind::Unsupported,
+            human: Some(human.id.clone()),
+            bone: Some("feet".to_string()),
+            object: None,
+            other: None,
+            frame: Some(r.worst),
+            frames: Some([r.start, r.end]),
+            depth: r.amount,
+        })
+        .collect()
 }
 
 /// Distance from the palm of the hand that reaches furthest to the nearest furniture part.
@@ -479,4 +499,20 @@ fn outside_floor(scene: &Scene, tolerance: f64) -> Vec<Violation> {
             })
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::runs;
+
+    #[test]
+    fn runs_are_the_stretches_above_zero_with_their_largest_frame() {
+        let found: Vec<_> = runs([0.0, 0.2, 0.5, 0.5, 0.0, 0.0, 0.1, 0.3])
+            .into_iter()
+            .map(|r| (r.start, r.end, r.worst, r.amount))
+            .collect();
+        // The first run ends at the first 0; the second at the end; ties keep the first frame.
+        assert_eq!(found, vec![(1, 4, 2, 0.5), (6, 8, 7, 0.3)]);
+        assert!(runs([0.0; 4]).is_empty() && runs(std::iter::empty()).is_empty());
+    }
 }
