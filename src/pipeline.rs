@@ -201,23 +201,24 @@ pub fn people_in_walls_message(walls: &[Violation]) -> Option<String> {
 }
 
 /// The warnings for an input's people whose feet are off the floor ([`people_off_the_floor`]), as
-/// the command line and Python give them: who, which frames and seconds, how high, what to do.
+/// the command line and Python give them ([`off_the_floor_message`]).
 pub fn off_the_floor_warnings(scene: &Scene, cfg: &CheckConfig) -> Vec<String> {
-    let fps = |id: &Option<String>| scene.humans.iter().find(|h| Some(&h.id) == id.as_ref()).map_or(30.0, |h| h.fps);
-    people_off_the_floor(scene, cfg)
-        .iter()
-        .map(|v| {
-            let [start, end] = v.frames.unwrap_or([0, 0]);
-            format!(
-                "{}'s feet are off the floor at frames {start}–{end} ({:.2}–{:.2} s; {:.2} m up at frame {}): they stand on something, and no piece here is for standing on, so no layout passes the check; leave those frames out (--trim)",
-                v.human.as_deref().unwrap_or("?"),
-                start as f64 / fps(&v.human),
-                end as f64 / fps(&v.human),
-                v.depth,
-                v.frame.unwrap_or(start)
-            )
-        })
-        .collect()
+    people_off_the_floor(scene, cfg).iter().map(|v| off_the_floor_message(scene, v)).collect()
+}
+
+/// One of [`people_off_the_floor`]'s violations of `scene` as a warning: who, which frames and
+/// seconds, how high, what to do.
+pub fn off_the_floor_message(scene: &Scene, v: &Violation) -> String {
+    let fps = scene.humans.iter().find(|h| Some(&h.id) == v.human.as_ref()).map_or(30.0, |h| h.fps);
+    let [start, end] = v.frames.unwrap_or([0, 0]);
+    format!(
+        "{}'s feet are off the floor at frames {start}–{end} ({:.2}–{:.2} s; {:.2} m up at frame {}): they stand on something, and no piece here is for standing on, so no layout passes the check; leave those frames out (--trim)",
+        v.human.as_deref().unwrap_or("?"),
+        start as f64 / fps,
+        end as f64 / fps,
+        v.depth,
+        v.frame.unwrap_or(start)
+    )
 }
 
 /// An input made from motion: the scene, what the import found in each clip, and where each clip

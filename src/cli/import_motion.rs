@@ -8,7 +8,7 @@ use clap::{Args, ValueEnum};
 use glam::DVec2;
 use shade_sim::human::{people_meeting, seats_in_the_way};
 use shade_sim::motion::{ImportOptions, MotionError, Placement, Trim, Units, UpAxis, read_motion};
-use shade_sim::pipeline::{Imported, import_placed, off_the_floor_warnings};
+use shade_sim::pipeline::{Imported, import_placed, off_the_floor_message};
 use shade_sim::scene::{ActionSpan, FloorPlan, validate_floor_plan};
 use shade_sim::sim::{CheckConfig, people_off_the_floor};
 use std::path::{Path, PathBuf};
@@ -194,10 +194,10 @@ pub fn run(args: &ImportMotionArgs, global: &GlobalArgs) -> anyhow::Result<ExitS
     for s in seats_in_the_way(&scene, CheckConfig::default().tolerance) {
         tracing::warn!("{}: {s}", args.out.display());
     }
-    for w in off_the_floor_warnings(&scene, &CheckConfig::default()) {
-        tracing::warn!("{}: {w}", args.out.display());
-    }
     let off_the_floor = people_off_the_floor(&scene, &CheckConfig::default());
+    for v in &off_the_floor {
+        tracing::warn!("{}: {}", args.out.display(), off_the_floor_message(&scene, v));
+    }
     let place_of = |i: usize| places[i].map(|p| [p.at.x, p.at.y, p.yaw_degrees]);
     if global.json {
         let rows: Vec<serde_json::Value> = reports
