@@ -1,12 +1,11 @@
 //! `shade-sim`: parse the command line, run the command, map the outcome to an exit code
 //! (0 ok, 1 found something, e.g. violations; 2 error with one line `error: <file>: <what>`).
 
-use clap::Parser;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
     shade_sim::tune_allocator_for_tensors();
-    let cli = cli::Cli::parse();
+    let cli = cli::parse_args();
     cli::init_logging(&cli.global);
     cli::quiet_panics();
     // Batch commands name the input a panic came from; this catches any other.

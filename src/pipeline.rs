@@ -23,7 +23,7 @@ use crate::physics::Physics;
 use crate::repair::{RepairConfig, RepairReport, repair_scene};
 use crate::scene::{FloorPlan, Human, RoomType, Scene};
 use crate::sim::{
-    CEILING, CheckConfig, CheckReport, SimPhysics, Violation, ViolationKind, check_scene, people_in_walls,
+    CEILING, CheckConfig, CheckReport, FLOOR, SimPhysics, Violation, ViolationKind, check_scene, people_in_walls,
     people_off_the_floor,
 };
 use rayon::prelude::*;
@@ -252,20 +252,21 @@ pub fn import_placed(clips: &[(PathBuf, Clip)], opts: &ImportOptions, auto: &[bo
         placed.push(human);
     }
     let (scene, reports) = import_clips(clips, &opts)?;
-    let files: Vec<PathBuf> = clips.iter().map(|(file, _)| file.clone()).collect();
-    if let Some(error) = body_in_a_wall(&scene, &files, opts.fps) {
+    if let Some(error) = body_in_a_wall(&scene, &reports, opts.fps) {
         return Err(error);
     }
     let places = (0..clips.len()).map(|i| opts.places.get(i).copied().flatten()).collect();
     Ok(Imported { scene, reports, places })
 }
 
-/// The deepest place where a body of an imported `scene` reaches into a wall or the ceiling, as
-/// `check` finds it, as an error naming its file (`files[k]` made human k): the frame, its time,
-/// the bone, the depth and the floor-plan edge (or the ceiling). Such an input fails `check`
-/// whatever the layout, although the pelvis and ankles that `motion::import_clip` tests are inside
-/// the floor (an arm swung out, a shoulder along the wall, a head above a low room's height).
-fn body_in_a_wall(scene: &Scene, files: &[PathBuf], fps: f64) -> Option<MotionError> {
+/// The deepest place where a body of an imported `scene` reaches into a wall, the ceiling or the
+/// floor, as `check` finds it, as an error naming its file (`reports[k]` made human k): the frame,
+/// its time, the bone, the depth and the floor-plan edge (or the ceiling, or the floor). Such an
+/// input fails `check` whatever the layout, although the pelvis and ankles that
+/// `motion::import_clip` tests are inside the floor plan (an arm swung out, a shoulder along the
+/// wall, a head above a low room's height, a knee lower than the lowest toe — or a clip read with
+/// the wrong up axis, lying on its side through the floor, which the error then says).
+fn body_in_a_wall(scene: &Scene, reports: &[ImportReport], fps: f64) -> Option<MotionError> {
     let walls = people_in_walls(scene, &CheckConfig::default());
     let v = walls.iter().max_by(|a, b| a.depth.total_cmp(&b.depth))?;
     let human = scene.humans.iter().position(|h| Some(&h.id) == v.human.as_ref()).unwrap_or(0);
@@ -276,13 +277,18 @@ fn body_in_a_wall(scene: &Scene, files: &[PathBuf], fps: f64) -> Option<MotionEr
             format!("the ceiling ({:.2} m high)", scene.floor_plan.height),
             "give the room a higher --height, or leave the frame out with --trim",
         ),
+        Some(FLOOR) if reports.get(human).is_some_and(|r| !r.ever_upright) => (
+            "the floor".to_string(),
+            "the trunk is never upright, so the up axis is likely wrong (--up); else leave the frame out with --trim",
+        ),
+        Some(FLOOR) => ("the floor".to_string(), "leave the frame out with --trim"),
         other => (
             format!("the wall of floor-plan edge {}", other.and_then(|o| o.strip_prefix("wall")).unwrap_or("?")),
             "place the clip with --place, or leave the frame out with --trim",
         ),
     };
     Some(MotionError::invalid(
-        files.get(human).cloned().unwrap_or_default(),
+        reports.get(human).map(|r| r.file.clone()).unwrap_or_default(),
         format!(
             "frame {frame} ({:.2} s): the {bone} is {:.2} m inside {inside}; {remedy}",
             frame as f64 / fps,
@@ -333,9 +339,10 @@ pub fn place_to_fit(
         tried.places[i] = Some(place);
         let Ok((human, _)) = import_clip(clip, i, &tried) else { continue };
         let alone = Scene { humans: vec![human.clone()], ..Scene::new(opts.room_type, opts.floor.clone()) };
-        // No placement moves a head out of the ceiling: that is `import_placed`'s error to give.
+        // No placement moves a head out of the ceiling or a knee out of the floor: that is
+        // `import_placed`'s error to give.
         let in_walls = people_in_walls(&alone, &CheckConfig::default());
-        if in_walls.iter().any(|v| v.object.as_deref() != Some(CEILING)) {
+        if in_walls.iter().any(|v| !matches!(v.object.as_deref(), Some(CEILING | FLOOR))) {
             continue;
         }
         if others.iter().all(|o| apart(&human, o, &opts.floor, tolerance)) {

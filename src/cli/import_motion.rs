@@ -35,11 +35,11 @@ pub struct ImportMotionArgs {
     #[arg(long, value_name = "X,Y,YAW_DEG|auto", allow_hyphen_values = true)]
     pub place: Vec<String>,
     /// Frames per second of the humans written.
-    #[arg(long, allow_negative_numbers = true, default_value_t = 30.0)]
+    #[arg(long, default_value_t = 30.0)]
     pub fps: f64,
     /// The person's stature (m): the clip is scaled to it. Default: measured from the clip, units
     /// detected.
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long)]
     pub stature: Option<f64>,
     /// Units of the files' positions.
     #[arg(long, value_enum, default_value_t = UnitsArg::Auto)]
@@ -48,10 +48,10 @@ pub struct ImportMotionArgs {
     #[arg(long, value_enum, default_value_t = UpArg::Auto)]
     pub up: UpArg,
     /// Frame rate of .npy arrays (which carry none).
-    #[arg(long, allow_negative_numbers = true, default_value_t = 30.0)]
+    #[arg(long, default_value_t = 30.0)]
     pub source_fps: f64,
     /// Ceiling height of a `WxD` floor (m).
-    #[arg(long, allow_negative_numbers = true, default_value_t = 2.8)]
+    #[arg(long, default_value_t = 2.8)]
     pub height: f64,
     /// A JSON list of spans `{"action": "sit", "start": 30, "end": 90}` (frames as written) that
     /// override the automatic labels; once per motion, in order.

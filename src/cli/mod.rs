@@ -137,6 +137,34 @@ impl From<ExitStatus> for ExitCode {
 }
 
 /// Runs the parsed command.
+/// Parses the process's arguments. Every command reads a number that starts with `-` as a value,
+/// not a flag (`generate --eta -1`, `import-motion --place -1,2,90`), so that a negative number
+/// reaches the option's own check and its one-line error instead of clap's "unexpected argument".
+/// A value an option cannot take (`--samples -1`, `--room kitchen`) is one line, `error: invalid
+/// value '-1' for '--samples <SAMPLES>': …`, and exit 2; help, version and usage errors (a missing
+/// or unknown argument) exit as clap gives them, with the usage.
+pub fn parse_args() -> Cli {
+    use clap::error::ErrorKind;
+    use clap::{CommandFactory, FromArgMatches};
+    let command = negative_numbers_are_values(Cli::command());
+    let parsed = command.try_get_matches().and_then(|m| Cli::from_arg_matches(&m));
+    parsed.unwrap_or_else(|e| match e.kind() {
+        ErrorKind::InvalidValue | ErrorKind::ValueValidation => {
+            let text = e.to_string();
+            eprintln!("{}", text.lines().next().unwrap_or("error: invalid value"));
+            std::process::exit(2) // ExitStatus::Error: bad input
+        }
+        _ => e.exit(),
+    })
+}
+
+fn negative_numbers_are_values(command: clap::Command) -> clap::Command {
+    let names: Vec<String> = command.get_subcommands().map(|s| s.get_name().to_string()).collect();
+    names
+        .iter()
+        .fold(command.allow_negative_numbers(true), |c, name| c.mut_subcommand(name, negative_numbers_are_values))
+}
+
 pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
     let result = match &cli.command {
         Command::Inspect(args) => inspect::run(args, &cli.global),

@@ -195,9 +195,14 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     if let Some(self_condition) = args.self_condition {
         model.self_condition = self_condition;
     }
+    anyhow::ensure!(args.min_snr.is_none_or(|g| g.is_finite() && g > 0.0), "--min-snr: must be a positive number");
     if args.min_snr.is_some() {
         model.min_snr = args.min_snr;
     }
+    anyhow::ensure!(
+        args.min_snr_floor.is_none_or(|f| f.is_finite() && f > 0.0 && model.min_snr.is_some_and(|g| f <= g)),
+        "--min-snr-floor: must be a positive number no larger than --min-snr, which it needs"
+    );
     if args.min_snr_floor.is_some() {
         model.min_snr_floor = args.min_snr_floor;
     }
@@ -221,6 +226,7 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     opts.joint_data = args.joint_data.clone();
     opts.steps = args.steps;
     opts.batch = args.batch;
+    anyhow::ensure!(args.lr.is_finite() && args.lr > 0.0, "--lr: must be a positive number");
     opts.lr = args.lr;
     opts.seed = args.seed;
     opts.resume = args.resume;
@@ -242,7 +248,11 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     opts.engine = args.engine;
     opts.log_every = args.log_every;
     opts.val_every = args.val_every;
-    opts.checkpoint_every = Duration::from_secs_f64(args.checkpoint_minutes.max(0.0) * 60.0);
+    anyhow::ensure!(
+        args.checkpoint_minutes.is_finite() && args.checkpoint_minutes >= 0.0,
+        "--checkpoint-minutes: must be a non-negative number"
+    );
+    opts.checkpoint_every = Duration::from_secs_f64(args.checkpoint_minutes * 60.0);
     opts.command = std::env::args().map(|a| shell_word(&a)).collect::<Vec<_>>().join(" ").replacen(
         &shell_word(&std::env::args().next().unwrap_or_default()),
         "shade-sim",

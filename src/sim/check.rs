@@ -85,30 +85,44 @@ fn owner_id(scene: &Scene, owner: Owner) -> String {
 /// penetration of it (`object`), a piece through it is in it as in a wall (`other`).
 pub const CEILING: &str = "ceiling";
 
-/// The violations no layout can mend: the people's bones deeper than `cfg.tolerance` in the walls
-/// or the ceiling (an input whose people stand or sit in a wall, or whose heads are above the
-/// room's height, has no layout that passes [`check_scene`]).
+/// What violations name the floor by: a person's bone below it (z = 0) is a penetration of it
+/// (`object`).
+pub const FLOOR: &str = "floor";
+
+/// The violations no layout can mend: the people's bones deeper than `cfg.tolerance` in the walls,
+/// the ceiling or the floor (an input whose people stand or sit in a wall, whose heads are above
+/// the room's height, or whose knees go through the floor, has no layout that passes
+/// [`check_scene`]).
 pub fn people_in_walls(scene: &Scene, cfg: &CheckConfig) -> Vec<Violation> {
     let walls = wall_solids(scene);
     let bodies = scene.humans.iter().flat_map(|h| penetrations(scene, h, &walls, cfg.tolerance));
-    bodies.chain(scene.humans.iter().flat_map(|h| body_through_ceiling(scene, h, cfg.tolerance))).collect()
+    bodies.chain(scene.humans.iter().flat_map(|h| body_through_floor_or_ceiling(scene, h, cfg.tolerance))).collect()
 }
 
-/// A person's bones above the ceiling (the floor plan's height) by more than `tolerance`: one
-/// penetration of `"ceiling"` per run of frames where any is, at its deepest bone and frame.
-fn body_through_ceiling(scene: &Scene, human: &Human, tolerance: f64) -> Vec<Violation> {
+/// A person's bones above the ceiling (the floor plan's height) or below the floor by more than
+/// `tolerance`: one penetration of `"ceiling"` or `"floor"` per run of frames where any is, at its
+/// deepest bone and frame.
+fn body_through_floor_or_ceiling(scene: &Scene, human: &Human, tolerance: f64) -> Vec<Violation> {
     let ceiling = scene.floor_plan.height;
-    // Per frame: how far the highest bone is above the ceiling beyond the tolerance (0: none), and which.
+    let bones = &human.skeleton.bones;
+    let top =
+        |f: usize, k: usize| human.joint_at(f, bones[k].a).z.max(human.joint_at(f, bones[k].b).z) + bones[k].radius;
+    let bottom =
+        |f: usize, k: usize| human.joint_at(f, bones[k].a).z.min(human.joint_at(f, bones[k].b).z) - bones[k].radius;
+    let above_ceiling = body_beyond(human, tolerance, CEILING, |f, k| top(f, k) - ceiling);
+    above_ceiling.into_iter().chain(body_beyond(human, tolerance, FLOOR, |f, k| -bottom(f, k))).collect()
+}
+
+/// The runs of frames where some bone is more than `tolerance` beyond a surface (`depth(frame,
+/// bone)`, positive beyond it), as penetrations of `surface`.
+fn body_beyond(human: &Human, tolerance: f64, surface: &str, depth: impl Fn(usize, usize) -> f64) -> Vec<Violation> {
+    // Per frame: how far the deepest bone is beyond the surface, past the tolerance (0: none), and which.
     let deepest: Vec<(f64, usize)> = (0..human.frames.len())
         .map(|f| {
-            let above = |k: usize| {
-                let bone = &human.skeleton.bones[k];
-                human.joint_at(f, bone.a).z.max(human.joint_at(f, bone.b).z) + bone.radius - ceiling
-            };
-            let (depth, k) = (0..human.skeleton.bones.len())
-                .map(|k| (above(k), k))
+            let (d, k) = (0..human.skeleton.bones.len())
+                .map(|k| (depth(f, k), k))
                 .fold((0.0, 0), |m, b| if b.0 > m.0 { b } else { m });
-            (if depth > tolerance { depth } else { 0.0 }, k)
+            (if d > tolerance { d } else { 0.0 }, k)
         })
         .collect();
     runs(deepest.iter().map(|d| d.0))
@@ -117,7 +131,7 @@ fn body_through_ceiling(scene: &Scene, human: &Human, tolerance: f64) -> Vec<Vio
             kind: ViolationKind::Penetration,
             human: Some(human.id.clone()),
             bone: Some(human.skeleton.bone_name(deepest[r.worst].1)),
-            object: Some(CEILING.to_string()),
+            object: Some(surface.to_string()),
             other: None,
             frame: Some(r.worst),
             frames: Some([r.start, r.end]),
@@ -177,7 +191,7 @@ pub fn check_scene(scene: &Scene, cfg: &CheckConfig) -> CheckReport {
     for human in &scene.humans {
         frames += human.frames.len();
         violations.extend(penetrations(scene, human, &solids, cfg.tolerance));
-        violations.extend(body_through_ceiling(scene, human, cfg.tolerance));
+        violations.extend(body_through_floor_or_ceiling(scene, human, cfg.tolerance));
         violations.extend(support(human, &furniture, cfg.support_distance));
         violations.extend(footing(human, &furniture, cfg.support_distance, cfg.max_flight_seconds));
     }

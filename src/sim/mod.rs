@@ -15,7 +15,7 @@ mod stability;
 mod violation;
 
 pub use check::{
-    CEILING, CheckConfig, CheckReport, capsule_depth, capsule_depth_beyond, check_scene, people_in_walls,
+    CEILING, CheckConfig, CheckReport, FLOOR, capsule_depth, capsule_depth_beyond, check_scene, people_in_walls,
     people_off_the_floor,
 };
 #[cfg(feature = "mujoco")]

@@ -101,3 +101,39 @@ fn quiet_conditions_prints_nothing_and_version_works() {
     let bad = shade_sim(&["inspect"]);
     assert_eq!(bad.status.code(), Some(2), "usage errors exit 2 too");
 }
+
+#[test]
+fn negative_and_invalid_numbers_are_one_line_errors_in_every_command() {
+    // A number starting with `-` is the option's value, checked by the command: before, clap took
+    // it for a flag ("unexpected argument '-1' found" and its usage, several lines).
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let input = example_scenes()[0].clone();
+    let (input, out) = (input.to_str().unwrap(), out.to_str().unwrap());
+    for (args, want) in [
+        (
+            vec!["generate", "--input", input, "--out", out, "--eta", "-1"],
+            "error: --eta: must be between 0 and 2, not -1",
+        ),
+        (
+            vec!["generate", "--input", input, "--out", out, "--guidance-scale", "-0.5"],
+            "error: --guidance-scale: must be",
+        ),
+        (
+            vec!["generate", "--input", input, "--out", out, "--samples", "-1"],
+            "error: invalid value '-1' for '--samples <SAMPLES>'",
+        ),
+        (vec!["check", input, "--tolerance", "-0.01"], "error: --tolerance: must be a non-negative number"),
+    ] {
+        let o = shade_sim(&args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        let err = stderr(&o);
+        assert!(err.starts_with(want), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+    }
+    assert!(!std::path::Path::new(out).exists());
+    // A missing argument still gets clap's usage.
+    let o = shade_sim(&["generate", "--input", input]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("Usage: shade-sim generate"), "{}", stderr(&o));
+}

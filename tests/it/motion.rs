@@ -539,7 +539,7 @@ fn import_motion_command_writes_an_input_that_generate_takes() {
 }
 
 #[test]
-fn a_clip_read_with_the_wrong_up_axis_is_warned_about() {
+fn a_clip_read_with_the_wrong_up_axis_is_refused_naming_the_up_axis() {
     let dir = tempfile::tempdir().unwrap();
     let run = |up: &str| {
         let out = dir.path().join(format!("{up}.json"));
@@ -559,12 +559,21 @@ fn a_clip_read_with_the_wrong_up_axis_is_warned_about() {
             out.to_str().unwrap(),
         ];
         let o = shade_sim(&args);
-        assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
-        String::from_utf8_lossy(&o.stderr).into_owned()
+        (o.status.code(), String::from_utf8_lossy(&o.stderr).into_owned(), out)
     };
-    assert!(run("y").is_empty());
-    let warned = run("z");
-    assert!(warned.contains("freebvh_walk.bvh: the trunk is never upright") && warned.contains("--up"), "{warned}");
+    let (code, err, _) = run("y");
+    assert_eq!((code, err.as_str()), (Some(0), ""));
+    // Read z-up, the walker lies on its side with its hip through the floor: no layout passes
+    // that, and the error names the up axis.
+    let (code, err, out) = run("z");
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.starts_with("error: ") && err.contains("freebvh_walk.bvh: frame "), "{err}");
+    assert!(
+        err.contains("inside the floor; the trunk is never upright, so the up axis is likely wrong (--up)"),
+        "{err}"
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(!out.exists());
 }
 
 #[test]
@@ -637,6 +646,34 @@ fn a_clip_whose_body_swings_into_a_wall_is_an_error_naming_the_frame() {
     assert!(o.status.success(), "{}", stderr(&o));
     let o = shade_sim(&["check", "--no-stability", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stdout(&o));
+}
+
+#[test]
+fn a_clip_whose_knee_goes_through_the_floor_is_an_error_naming_the_frame() {
+    // The import puts the lowest toe on the floor; a knee lower than it (a kneel, marker noise)
+    // is in the floor, which `check` would find in every layout. Our own motion, its left knee
+    // lowered 12 cm below the lowest toe at frames 40–44, as an array of our joints.
+    let mut frames = body_frames(&own_motion()).unwrap();
+    let toe = frames
+        .iter()
+        .flat_map(|f| [f[Joint::LeftToe.index()].z, f[Joint::RightToe.index()].z])
+        .fold(f64::INFINITY, f64::min);
+    for f in &mut frames[40..45] {
+        f[Joint::LeftKnee.index()].z = toe - 0.12;
+    }
+    let values: Vec<f32> = frames.iter().flatten().flat_map(|p| p.to_array()).map(|v| v as f32).collect();
+    let dir = tempfile::tempdir().unwrap();
+    let array = dir.path().join("kneel.npz");
+    write_npz(&array, &values, frames.len(), 19, Some(&shade_sim::scene::JOINT_NAMES), Some(30.0));
+    let out = dir.path().join("kneel.json");
+    let args = ["--room", "bedroom", "--floor", "5x4", "--out", out.to_str().unwrap()];
+    let o = shade_sim(&[&["import-motion", array.to_str().unwrap()][..], &args].concat());
+    assert_eq!(o.status.code(), Some(2));
+    let err = stderr(&o);
+    assert!(err.starts_with("error: ") && err.contains("kneel.npz: frame 4"), "{err}");
+    assert!(err.contains("inside the floor; leave the frame out with --trim"), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(!out.exists());
 }
 
 /// `freebvh_walk.bvh` imported into a 4 × 4 m bedroom, placed at `place`, written into `dir`.

@@ -180,6 +180,33 @@ fn a_head_above_a_low_room_is_in_its_ceiling() {
 }
 
 #[test]
+fn feet_sunk_into_the_floor_are_in_it() {
+    // The touchers of the calibrated data before 2026-12-01 stood up to 18 cm deep in the floor,
+    // and `check` passed them: it looked at the walls and the ceiling only.
+    let cfg = CheckConfig { stability: false, ..CheckConfig::default() };
+    let mut s = room();
+    s.humans.push(lifted_stander(12, 0..0, 0.0));
+    let lowest = |s: &Scene| {
+        let h = &s.humans[0];
+        let at = |f: usize, j: usize| h.joint_at(f, j).z;
+        h.skeleton.bones.iter().map(|b| at(0, b.a).min(at(0, b.b)) - b.radius).fold(f64::INFINITY, f64::min)
+    };
+    assert!(lowest(&s).abs() < 1e-3, "the stand pose is on the floor: {}", lowest(&s));
+    assert_eq!(check_scene(&s, &cfg).violations, vec![]);
+    // 1.5 cm down, within the tolerance (2 cm): clean; 5 cm down at frames 4–8: in the floor there.
+    s.humans[0] = lifted_stander(12, 0..12, -0.015);
+    assert_eq!(check_scene(&s, &cfg).violations, vec![]);
+    s.humans[0] = lifted_stander(12, 4..8, -0.05);
+    let found = check_scene(&s, &cfg).violations;
+    assert_eq!(found.len(), 1, "{found:?}");
+    let v = &found[0];
+    assert_eq!((v.kind, v.object.as_deref(), v.frames), (ViolationKind::Penetration, Some("floor"), Some([4, 8])));
+    assert!((v.depth - 0.05).abs() < 2e-3, "{v:?}");
+    // No layout mends it.
+    assert_eq!(shade_sim::sim::people_in_walls(&s, &cfg), found);
+}
+
+#[test]
 fn legs_under_a_dining_table_are_clean() {
     let mut s = room();
     s.objects.push(object("o0", Category::DiningTable, [2.5, 2.0], [1.6, 0.9, 0.75], 0.0));
