@@ -187,16 +187,6 @@ fn target_translation(b: &OBox, action: Action, object: &Object) -> Option<DVec3
     }
 }
 
-/// The height of the lowest point of `h`'s bones (their capsules) at frame `f`: 0 for someone
-/// standing on the floor.
-fn lowest_bone_bottom(h: &Human, f: usize) -> f64 {
-    h.skeleton
-        .bones
-        .iter()
-        .map(|bone| h.joint_at(f, bone.a).z.min(h.joint_at(f, bone.b).z) - bone.radius)
-        .fold(f64::INFINITY, f64::min)
-}
-
 /// Translation modification of one human against `objects` (the human is moved in place).
 /// Returns (object index, translation applied, fixed, problem).
 fn fix_translation(h: &mut Human, judge: &Judge) -> (Option<usize>, DVec3, bool, Option<String>) {
@@ -214,7 +204,7 @@ fn fix_translation(h: &mut Human, judge: &Judge) -> (Option<usize>, DVec3, bool,
         // it in 3D put the palm on a front face at the height it was misplaced to, and left 5 % of
         // the calibrated bedrooms and 13 % of the dining rooms with a foot up to 18 cm in the
         // floor.)
-        base.z = -lowest_bone_bottom(h, f);
+        base.z = -h.lowest_point(f);
     }
     // Surface points of the contact frame, sampled once: a translation moves them rigidly.
     let joints: Vec<DVec3> = h.frame(f).collect();

@@ -109,6 +109,19 @@ impl Human {
         DVec3::from(self.frames[f][j])
     }
 
+    /// The lowest and the highest point of bone `k`'s capsule in frame `f` (z, m).
+    pub fn bone_z_range(&self, f: usize, k: usize) -> (f64, f64) {
+        let bone = &self.skeleton.bones[k];
+        let (a, b) = (self.joint_at(f, bone.a).z, self.joint_at(f, bone.b).z);
+        (a.min(b) - bone.radius, a.max(b) + bone.radius)
+    }
+
+    /// The lowest point of the body in frame `f` (z of its lowest capsule's bottom, m): 0 for
+    /// someone standing on the floor.
+    pub fn lowest_point(&self, f: usize) -> f64 {
+        (0..self.skeleton.bones.len()).map(|k| self.bone_z_range(f, k).0).fold(f64::INFINITY, f64::min)
+    }
+
     /// The action label of frame `f`, if any span covers it.
     pub fn action_at(&self, f: usize) -> Option<Action> {
         self.actions.iter().find(|s| (s.start..s.end).contains(&f)).map(|s| s.action)

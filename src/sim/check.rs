@@ -104,13 +104,8 @@ pub fn people_in_walls(scene: &Scene, cfg: &CheckConfig) -> Vec<Violation> {
 /// deepest bone and frame.
 fn body_through_floor_or_ceiling(scene: &Scene, human: &Human, tolerance: f64) -> Vec<Violation> {
     let ceiling = scene.floor_plan.height;
-    let bones = &human.skeleton.bones;
-    let top =
-        |f: usize, k: usize| human.joint_at(f, bones[k].a).z.max(human.joint_at(f, bones[k].b).z) + bones[k].radius;
-    let bottom =
-        |f: usize, k: usize| human.joint_at(f, bones[k].a).z.min(human.joint_at(f, bones[k].b).z) - bones[k].radius;
-    let above_ceiling = body_beyond(human, tolerance, CEILING, |f, k| top(f, k) - ceiling);
-    above_ceiling.into_iter().chain(body_beyond(human, tolerance, FLOOR, |f, k| -bottom(f, k))).collect()
+    let above_ceiling = body_beyond(human, tolerance, CEILING, |f, k| human.bone_z_range(f, k).1 - ceiling);
+    above_ceiling.into_iter().chain(body_beyond(human, tolerance, FLOOR, |f, k| -human.bone_z_range(f, k).0)).collect()
 }
 
 /// The runs of frames where some bone is more than `tolerance` beyond a surface (`depth(frame,

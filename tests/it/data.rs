@@ -425,9 +425,7 @@ fn calibrated_touchers_stand_on_the_floor() {
                 let h =
                     cal.scene.humans.iter().find(|h| h.id == record.human).expect("a record's human is in the scene");
                 touchers += 1;
-                let z = |j: usize| h.joint_at(0, j).z;
-                let lowest =
-                    h.skeleton.bones.iter().map(|b| z(b.a).min(z(b.b)) - b.radius).fold(f64::INFINITY, f64::min);
+                let lowest = h.lowest_point(0);
                 // On the floor, or the search's 1–2 cm above it; mm rounding either way.
                 assert!((-0.002..=0.022).contains(&lowest), "{room} {i}: {} stands {lowest} m off the floor", h.id);
             }

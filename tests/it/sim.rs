@@ -186,12 +186,8 @@ fn feet_sunk_into_the_floor_are_in_it() {
     let cfg = CheckConfig { stability: false, ..CheckConfig::default() };
     let mut s = room();
     s.humans.push(lifted_stander(12, 0..0, 0.0));
-    let lowest = |s: &Scene| {
-        let h = &s.humans[0];
-        let at = |f: usize, j: usize| h.joint_at(f, j).z;
-        h.skeleton.bones.iter().map(|b| at(0, b.a).min(at(0, b.b)) - b.radius).fold(f64::INFINITY, f64::min)
-    };
-    assert!(lowest(&s).abs() < 1e-3, "the stand pose is on the floor: {}", lowest(&s));
+    let lowest = s.humans[0].lowest_point(0);
+    assert!(lowest.abs() < 1e-3, "the stand pose is on the floor: {lowest}");
     assert_eq!(check_scene(&s, &cfg).violations, vec![]);
     // 1.5 cm down, within the tolerance (2 cm): clean; 5 cm down at frames 4–8: in the floor there.
     s.humans[0] = lifted_stander(12, 0..12, -0.015);
