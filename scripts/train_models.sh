@@ -50,5 +50,7 @@ train living 36000 0.25 --extra-data "$data/living-extra" --anchored-yaw box --w
 train living:living-expert 16000 0.25 --extra-data "$data/living-extra" --anchored-yaw box --wall-features false \
     --prediction v --expert-below 10
 # Dining: the v model of the bedrooms on both draws (docs/RESULTS.md, "The dining v model on both draws").
+# Its default sampler, DDIM's η 1.5 on the geometry (docs/RESULTS.md, "Fresh noise on the dining
+# rooms' geometry"), goes into its config.json.
 train dining 36000 0.25 --extra-data "$data/dining-extra" --anchored-yaw box --wall-features false \
-    --prediction v --schedule log_snr --min-snr 5 --min-snr-floor 1
+    --prediction v --schedule log_snr --min-snr 5 --min-snr-floor 1 --geometry-eta 1.5

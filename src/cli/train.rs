@@ -122,6 +122,11 @@ pub struct TrainArgs {
     /// its step says, the target unchanged (0: none). The validation loss stays unperturbed.
     #[arg(long, default_value_t = 0.0)]
     pub input_perturbation: f64,
+    /// The model's default sampler, recorded in config.json's `sampling`: DDIM's η on the pieces'
+    /// geometry (0 to 2), the classes on DDPM's chain, as `generate --eta ETA --eta-geometry-only`
+    /// (default: none, DDPM's chain; 1.5 for the shipped dining model).
+    #[arg(long, value_name = "ETA")]
+    pub geometry_eta: Option<f64>,
     /// Share of training scenes with one free piece moved 6 to 50 cm before the noise, the target
     /// still the scene's own layout, so that the model learns to put pieces back (0: none;
     /// docs/RESULTS.md, "Displaced pieces"). The validation loss sees none.
@@ -245,6 +250,11 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
         "--displaced-pieces: must be a number between 0 and 1"
     );
     opts.displaced_pieces = args.displaced_pieces;
+    anyhow::ensure!(
+        args.geometry_eta.is_none_or(|eta| (0.0..=2.0).contains(&eta)),
+        "--geometry-eta: must be between 0 and 2"
+    );
+    opts.sampling = args.geometry_eta.map(|geometry_eta| shade_sim::generator::SamplingDefaults { geometry_eta });
     opts.engine = args.engine;
     opts.log_every = args.log_every;
     opts.val_every = args.val_every;

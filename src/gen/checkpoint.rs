@@ -77,7 +77,7 @@ pub struct CheckpointMeta {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub seen_counts: Option<SeenCounts>,
     /// How the model samples by default, chosen on its val split after training; absent: DDPM's
-    /// chain. `train` writes none.
+    /// chain. `train` writes it when asked (`train --geometry-eta`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sampling: Option<SamplingDefaults>,
 }

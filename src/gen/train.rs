@@ -10,8 +10,8 @@
 
 use super::adamw::{AdamW, AdamWConfig};
 use super::checkpoint::{
-    CONFIG_FILE, CheckpointMeta, MODEL_FORMAT, STATE_FILE, STATE_META_FILE, TrainingInfo, WEIGHTS_FILE, fnv1a_hex,
-    read_tensors, write_json, write_tensors,
+    CONFIG_FILE, CheckpointMeta, MODEL_FORMAT, STATE_FILE, STATE_META_FILE, SamplingDefaults, TrainingInfo,
+    WEIGHTS_FILE, fnv1a_hex, read_tensors, write_json, write_tensors,
 };
 use super::dataset::{Example, HostBatch, NoisyBatch, balance_categories, load_split};
 use super::engine::{Engine, Gradients};
@@ -76,6 +76,9 @@ pub struct TrainOptions {
     /// Share of training scenes with one piece displaced ([`NoisyBatch::displace_pieces`]; 0, the
     /// default, none). Validation scenes get none.
     pub displaced_pieces: f64,
+    /// The sampler `generate` uses for the model by default, recorded in config.json's `sampling`
+    /// (None, the default: DDPM's chain).
+    pub sampling: Option<SamplingDefaults>,
     /// Where gradients come from.
     pub engine: Engine,
 }
@@ -104,6 +107,7 @@ impl TrainOptions {
             category_balance: 0.0,
             input_perturbation: 0.0,
             displaced_pieces: 0.0,
+            sampling: None,
             engine: Engine::Fused,
         }
     }
@@ -358,7 +362,7 @@ pub fn train(
                     weights_hash: None,
                     count_prior: count_prior.clone(),
                     seen_counts: Some(seen_counts.clone()),
-                    sampling: None,
+                    sampling: opts.sampling.clone(),
                 };
                 let state = StateMeta { step, adam_steps: adam.steps, seconds, val_loss, data_hash: data_hash.clone() };
                 save(&opts.out, &meta, &state, &layout, &params, &adam, &ema)?;

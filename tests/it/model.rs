@@ -119,22 +119,14 @@ fn the_fused_and_candle_engines_follow_the_same_loss_curve_and_share_checkpoints
 }
 
 fn train_cli(data: &Path, out: &Path) -> std::process::Output {
+    train_cli_with(data, out, &[])
+}
+
+fn train_cli_with(data: &Path, out: &Path, extra: &[&str]) -> std::process::Output {
     let (d, o) = (data.to_str().unwrap(), out.to_str().unwrap());
-    shade_sim(&[
-        "train",
-        "--data",
-        d,
-        "--out",
-        o,
-        "--steps",
-        "3",
-        "--batch",
-        "4",
-        "--preset",
-        "tiny",
-        "--log-every",
-        "1",
-    ])
+    let args =
+        ["train", "--data", d, "--out", o, "--steps", "3", "--batch", "4", "--preset", "tiny", "--log-every", "1"];
+    shade_sim(&[&args[..], extra].concat())
 }
 
 #[test]
@@ -347,10 +339,28 @@ fn train_writes_a_checkpoint_and_generate_is_deterministic() {
     assert_eq!(read_log(&model.join("log.jsonl")).unwrap().len(), 3);
     assert!(std::fs::read(model.join("loss.png")).unwrap().starts_with(b"\x89PNG"));
 
+    assert_eq!(ckpt.meta.sampling, None, "DDPM's chain unless asked");
+
     // The same folder again without --resume would throw the run away: refused.
     let again = train_cli(&data, &model);
     assert_eq!(again.status.code(), Some(2));
     assert!(stderr(&again).contains("--resume"), "{}", stderr(&again));
+
+    // The model's default sampler goes into its config.json, as the shipped dining model's.
+    let with_eta = dir.path().join("with_eta");
+    let o = train_cli_with(&data, &with_eta, &["--geometry-eta", "1.5"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let sampling = Checkpoint::load(&with_eta).unwrap().meta.sampling;
+    assert_eq!(sampling, Some(shade_sim::generator::SamplingDefaults { geometry_eta: 1.5 }));
+    for (extra, want) in [
+        (["--geometry-eta", "3"], "error: --geometry-eta: must be between 0 and 2"),
+        (["--lr", "-1"], "error: --lr: must be a positive number"),
+    ] {
+        let o = train_cli_with(&data, &dir.path().join("refused"), &extra);
+        assert_eq!(o.status.code(), Some(2));
+        assert!(stderr(&o).starts_with(want) && stderr(&o).lines().count() == 1, "{}", stderr(&o));
+        assert!(!dir.path().join("refused").exists(), "nothing written");
+    }
 
     let input = root().join("scenes/examples/bedroom_rect.json");
     let generate = |seed: &str, out: &Path| {
