@@ -136,7 +136,6 @@ impl From<ExitStatus> for ExitCode {
     }
 }
 
-/// Runs the parsed command.
 /// Parses the process's arguments. Every command reads a number that starts with `-` as a value,
 /// not a flag (`generate --eta -1`, `import-motion --place -1,2,90`), so that a negative number
 /// reaches the option's own check and its one-line error instead of clap's "unexpected argument".
@@ -165,6 +164,7 @@ fn negative_numbers_are_values(command: clap::Command) -> clap::Command {
         .fold(command.allow_negative_numbers(true), |c, name| c.mut_subcommand(name, negative_numbers_are_values))
 }
 
+/// Runs the parsed command.
 pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
     let result = match &cli.command {
         Command::Inspect(args) => inspect::run(args, &cli.global),
