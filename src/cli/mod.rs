@@ -140,7 +140,7 @@ impl From<ExitStatus> for ExitCode {
 /// not a flag (`generate --eta -1`, `import-motion --place -1,2,90`), so that a negative number
 /// reaches the option's own check and its one-line error instead of clap's "unexpected argument".
 /// A value an option cannot take (`--samples -1`, `--room kitchen`) is one line, `error: invalid
-/// value '-1' for '--samples <SAMPLES>': …`, and exit 2; help, version and usage errors (a missing
+/// value 'kitchen' for '--room <ROOM>' [possible values: bedroom, living, dining]`, and exit 2; help, version and usage errors (a missing
 /// or unknown argument) exit as clap gives them, with the usage.
 pub fn parse_args() -> Cli {
     use clap::error::ErrorKind;
@@ -149,8 +149,10 @@ pub fn parse_args() -> Cli {
     let parsed = command.try_get_matches().and_then(|m| Cli::from_arg_matches(&m));
     parsed.unwrap_or_else(|e| match e.kind() {
         ErrorKind::InvalidValue | ErrorKind::ValueValidation => {
+            // clap's first paragraph (the value, the option, the possible values), as one line.
             let text = e.to_string();
-            eprintln!("{}", text.lines().next().unwrap_or("error: invalid value"));
+            let first: Vec<&str> = text.lines().take_while(|l| !l.trim().is_empty()).map(str::trim).collect();
+            eprintln!("{}", first.join(" "));
             std::process::exit(2) // ExitStatus::Error: bad input
         }
         _ => e.exit(),

@@ -124,6 +124,10 @@ fn negative_and_invalid_numbers_are_one_line_errors_in_every_command() {
             "error: invalid value '-1' for '--samples <SAMPLES>'",
         ),
         (vec!["check", input, "--tolerance", "-0.01"], "error: --tolerance: must be a non-negative number"),
+        (
+            vec!["import-motion", input, "--room", "kitchen", "--floor", "5x4", "--out", out],
+            "error: invalid value 'kitchen' for '--room <ROOM>' [possible values: bedroom, living, dining]",
+        ),
     ] {
         let o = shade_sim(&args);
         assert_eq!(o.status.code(), Some(2), "{args:?}");
