@@ -277,11 +277,17 @@ fn body_in_a_wall(scene: &Scene, reports: &[ImportReport], fps: f64) -> Option<M
             format!("the ceiling ({:.2} m high)", scene.floor_plan.height),
             "give the room a higher --height, or leave the frame out with --trim",
         ),
-        Some(FLOOR) if reports.get(human).is_some_and(|r| !r.ever_upright) => (
-            "the floor".to_string(),
-            "the trunk is never upright, so the up axis is likely wrong (--up); else leave the frame out with --trim",
-        ),
-        Some(FLOOR) => ("the floor".to_string(), "leave the frame out with --trim"),
+        Some(FLOOR) => {
+            // A clip read with the wrong up axis lies on its side through the floor.
+            let on_its_side = reports.get(human).is_some_and(|r| !r.ever_upright);
+            let remedy = match on_its_side {
+                true => {
+                    "the trunk is never upright, so the up axis is likely wrong (--up); else leave the frame out with --trim"
+                }
+                false => "leave the frame out with --trim",
+            };
+            ("the floor".to_string(), remedy)
+        }
         other => (
             format!("the wall of floor-plan edge {}", other.and_then(|o| o.strip_prefix("wall")).unwrap_or("?")),
             "place the clip with --place, or leave the frame out with --trim",

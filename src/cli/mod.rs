@@ -140,8 +140,9 @@ impl From<ExitStatus> for ExitCode {
 /// not a flag (`generate --eta -1`, `import-motion --place -1,2,90`), so that a negative number
 /// reaches the option's own check and its one-line error instead of clap's "unexpected argument".
 /// A value an option cannot take (`--samples -1`, `--room kitchen`) is one line, `error: invalid
-/// value 'kitchen' for '--room <ROOM>' [possible values: bedroom, living, dining]`, and exit 2; help, version and usage errors (a missing
-/// or unknown argument) exit as clap gives them, with the usage.
+/// value 'kitchen' for '--room <ROOM>' [possible values: bedroom, living, dining]`, and exit 2;
+/// help, version and usage errors (a missing or unknown argument) exit as clap gives them, with
+/// the usage.
 pub fn parse_args() -> Cli {
     use clap::error::ErrorKind;
     use clap::{CommandFactory, FromArgMatches};
