@@ -118,6 +118,10 @@ pub struct TrainArgs {
     /// (0: every object alike). The validation loss stays unweighted.
     #[arg(long, default_value_t = 0.0)]
     pub category_balance: f64,
+    /// EMA decay of the shipped weights: each step keeps DECAY of them and takes 1 − DECAY of the
+    /// trained ones (0 < DECAY < 1: an average over about the last 1 / (1 − DECAY) steps).
+    #[arg(long, default_value_t = 0.999, value_name = "DECAY")]
+    pub ema_decay: f64,
     /// Input perturbation γ (DDPM-IP): every training input gets √(1 − ᾱ_t) γ ξ more noise than
     /// its step says, the target unchanged (0: none). The validation loss stays unperturbed.
     #[arg(long, default_value_t = 0.0)]
@@ -245,6 +249,12 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
         "--input-perturbation: must be a number between 0 and 1"
     );
     opts.input_perturbation = args.input_perturbation;
+    anyhow::ensure!(
+        args.ema_decay.is_finite() && args.ema_decay > 0.0 && args.ema_decay < 1.0,
+        "--ema-decay: must be a number between 0 and 1, not {}",
+        args.ema_decay
+    );
+    opts.ema_decay = args.ema_decay;
     anyhow::ensure!(
         args.displaced_pieces.is_finite() && (0.0..=1.0).contains(&args.displaced_pieces),
         "--displaced-pieces: must be a number between 0 and 1"

@@ -340,21 +340,25 @@ fn train_writes_a_checkpoint_and_generate_is_deterministic() {
     assert!(std::fs::read(model.join("loss.png")).unwrap().starts_with(b"\x89PNG"));
 
     assert_eq!(ckpt.meta.sampling, None, "DDPM's chain unless asked");
+    assert_eq!(ckpt.meta.training.ema_decay, 0.999, "the default EMA");
 
     // The same folder again without --resume would throw the run away: refused.
     let again = train_cli(&data, &model);
     assert_eq!(again.status.code(), Some(2));
     assert!(stderr(&again).contains("--resume"), "{}", stderr(&again));
 
-    // The model's default sampler goes into its config.json, as the shipped dining model's.
+    // The model's default sampler goes into its config.json, as the shipped dining model's, and
+    // so does another EMA decay.
     let with_eta = dir.path().join("with_eta");
-    let o = train_cli_with(&data, &with_eta, &["--geometry-eta", "1.5"]);
+    let o = train_cli_with(&data, &with_eta, &["--geometry-eta", "1.5", "--ema-decay", "0.99"]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let sampling = Checkpoint::load(&with_eta).unwrap().meta.sampling;
-    assert_eq!(sampling, Some(shade_sim::generator::SamplingDefaults { geometry_eta: 1.5 }));
+    let meta = Checkpoint::load(&with_eta).unwrap().meta;
+    assert_eq!(meta.sampling, Some(shade_sim::generator::SamplingDefaults { geometry_eta: 1.5 }));
+    assert_eq!(meta.training.ema_decay, 0.99);
     for (extra, want) in [
         (["--geometry-eta", "3"], "error: --geometry-eta: must be between 0 and 2"),
         (["--lr", "-1"], "error: --lr: must be a positive number"),
+        (["--ema-decay", "1"], "error: --ema-decay: must be a number between 0 and 1, not 1"),
     ] {
         let o = train_cli_with(&data, &dir.path().join("refused"), &extra);
         assert_eq!(o.status.code(), Some(2));
