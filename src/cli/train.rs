@@ -78,6 +78,11 @@ pub struct TrainArgs {
     /// between pieces"): true or false (default: the preset's, false).
     #[arg(long)]
     pub gap_features: Option<bool>,
+    /// Whether free slots hold their pieces round the room (by the angle about the window centre)
+    /// and each gets an embedding of its rank, so that they are no longer each other's twins
+    /// (docs/RESULTS.md, "Slot roles"): true or false (default: the preset's, false).
+    #[arg(long)]
+    pub slot_roles: Option<bool>,
     /// Whether every attention score gets a learned bias from the pair's relation (position and
     /// yaw of one piece in the other's frame, distance): true or false (default: the preset's,
     /// false).
@@ -188,6 +193,9 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     }
     if let Some(wall_features) = args.wall_features {
         model.wall_features = wall_features;
+    }
+    if let Some(slot_roles) = args.slot_roles {
+        model.slot_roles = slot_roles;
     }
     if let Some(bands) = args.fourier_bands {
         model.fourier_bands = bands;

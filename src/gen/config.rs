@@ -72,6 +72,12 @@ pub struct ModelConfig {
     /// (older configs): no gap features.
     #[serde(default)]
     pub gap_bounds: Option<Bounds>,
+    /// Slot roles ([`super::roles`]): the training tokens hold the free pieces in one order, by
+    /// the angle of their centre about the window centre, and every free slot gets a learned
+    /// embedding of its rank among the free slots, so that free slots are no longer each other's
+    /// twins. Off in older configs: the model is equivariant to the order of its free slots.
+    #[serde(default)]
+    pub slot_roles: bool,
     /// What the denoiser predicts: the noise ε (DDPM's choice, every model before it) or the clean
     /// tokens x₀. Older configs read as ε.
     #[serde(default)]
@@ -222,6 +228,7 @@ impl ModelConfig {
             wall_features: true,
             fourier_bands: 0,
             gap_bounds: None,
+            slot_roles: false,
             prediction: Prediction::X0,
             schedule: NoiseSchedule::Linear,
             self_condition: false,
@@ -276,6 +283,7 @@ impl ModelConfig {
             wall_features: true,
             fourier_bands: 0,
             gap_bounds: None,
+            slot_roles: false,
             prediction: Prediction::X0,
             schedule: NoiseSchedule::Linear,
             self_condition: false,

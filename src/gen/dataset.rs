@@ -4,7 +4,7 @@
 use super::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES};
 use super::count_prior::{PriorRoom, contact_kinds};
 use super::model::CondTensors;
-use super::{Bounds, Dihedral, Features, GenError, ModelConfig, Prediction, Schedule, anchors, tokens};
+use super::{Bounds, Dihedral, Features, GenError, ModelConfig, Prediction, Schedule, anchors, roles, tokens};
 use crate::data::{DataError, Rng};
 use crate::geom::OBox;
 use crate::human::Conditions;
@@ -56,6 +56,11 @@ impl Example {
         let mut out = self.clone();
         g.apply_tokens(&mut out.tokens, cfg.token_dim());
         out.features.transform(g);
+        if cfg.slot_roles {
+            // The turn or mirror moved the pieces round the window centre: their order again.
+            let boxes = out.features.contact_mask.iter().filter(|&&m| m != 0.0).count();
+            roles::order_free_slots(&mut out.tokens, &mut out.weights, cfg.anchored_slots(boxes), cfg);
+        }
         out
     }
 }

@@ -32,6 +32,7 @@ mod model;
 mod params;
 pub mod phys_guidance;
 pub mod relations;
+pub mod roles;
 mod sampler;
 mod schedule;
 pub mod seen_counts;

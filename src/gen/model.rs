@@ -14,6 +14,7 @@ use super::fourier;
 use super::gaps::{self, GAP_FEATURES};
 use super::params::{Init, Linear, Params, layer_norm};
 use super::relations::{self, RELATION_FEATURES};
+use super::roles;
 use super::walls::{self, WALL_FEATURES};
 use super::{GenError, ModelConfig};
 use crate::scene::RoomType;
@@ -140,6 +141,9 @@ pub struct Denoiser {
     /// With self-conditioning: the embedding of the previous clean estimate of a slot, added to
     /// its token.
     pub(super) estimate: Option<Linear>,
+    /// With slot roles: the embedding of a free slot's rank among the free slots, added to its
+    /// token.
+    pub(super) roles: Option<Linear>,
     pub(super) time: [Linear; 2],
     pub(super) contact: [Linear; 2],
     pub(super) contact_kind: Tensor,
@@ -194,6 +198,10 @@ impl Denoiser {
             },
             estimate: match cfg.self_condition {
                 true => Some(p.linear("estimate", cfg.token_dim(), d, true)?),
+                false => None,
+            },
+            roles: match cfg.slot_roles {
+                true => Some(p.linear("roles", cfg.slots(), d, false)?),
                 false => None,
             },
             time: [p.linear("time.0", TIME_FEATURES, d, false)?, p.linear("time.1", d, d, false)?],
@@ -280,6 +288,11 @@ impl Denoiser {
             let features = fourier::slot_features(&self.cfg, &x.flatten_all()?.to_vec1::<f32>()?);
             let width = fourier::features_per_slot(&self.cfg);
             h = (h + layer.forward(&Tensor::from_vec(features, (b, slots, width), x.device())?)?)?;
+        }
+        if let Some(layer) = &self.roles {
+            let features =
+                self.slot_features(x, cond, self.cfg.slots(), |_, _, mask, _| roles::slot_features(&self.cfg, mask))?;
+            h = (h + layer.forward(&features)?)?;
         }
         if let Some(layer) = &self.estimate {
             let zeros;

@@ -87,7 +87,8 @@ pub const CLASS_OFFSET: usize = 8;
 /// With anchored slots (`cfg.anchor_scale > 0`), slot k first holds the piece serving contact box k
 /// of `contact_boxes` (the one covering most of the box, as contact IoU measures; a piece serving
 /// several boxes is in each of their slots; a box nothing covers leaves its slot empty); the other
-/// pieces follow in scene order. Without, the pieces fill the slots in scene order. Tokens are in
+/// pieces follow in scene order, or with slot roles in role order ([`super::roles`]). Without, the
+/// pieces fill the slots in that order. Tokens are in
 /// world form either way ([`super::anchors`] converts). Pieces beyond the slot count are dropped.
 pub fn encode(
     scene: &Scene,
@@ -114,6 +115,7 @@ pub fn encode(
             .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)));
         order.push(serving.map(|(i, _)| i));
     }
+    let anchored = order.len();
     let free: Vec<Option<usize>> = (0..known.len()).filter(|i| !order.contains(&Some(*i))).map(Some).collect();
     order.extend(free);
     order.resize(cfg.slots(), None);
@@ -139,6 +141,9 @@ pub fn encode(
         for k in 0..classes {
             t[CLASS_OFFSET + k] = if k == class { 1.0 } else { -1.0 };
         }
+    }
+    if cfg.slot_roles {
+        super::roles::order_free_slots(&mut tokens, &mut weights, anchored, cfg);
     }
     (tokens, weights)
 }

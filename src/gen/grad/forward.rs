@@ -14,7 +14,7 @@ use super::{ChunkInputs, ConditionInputs, GradNet};
 use crate::generator::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES};
 use crate::generator::matmul::LinearAt;
 use crate::generator::model::time_feature_values;
-use crate::generator::{fourier, gaps, relations, walls};
+use crate::generator::{fourier, gaps, relations, roles, walls};
 
 /// A PointNet's activations: ReLU outputs of the first two layers, the third's output and, per
 /// item, the max over the points.
@@ -201,6 +201,8 @@ pub(super) struct StepTape {
     pub(super) fourier_in: Vec<f32>,
     /// With gap features: every object row's ([`gaps::slot_features`]).
     pub(super) gap_in: Vec<f32>,
+    /// With slot roles: every object row's rank features ([`roles::slot_features`]).
+    pub(super) role_in: Vec<f32>,
     /// With self-conditioning: the previous clean estimate of every object row (zeros: none).
     pub(super) estimate_in: Vec<f32>,
     /// Per block (items × 6d), then the final layer's (items × 2d).
@@ -273,6 +275,9 @@ impl StepTape {
             }),
             None => Vec::new(),
         };
+        let role_in = embed(net.roles.as_ref(), &|| {
+            slot_features(net, cond, noisy, |_, _, mask, _| roles::slot_features(cfg, mask))
+        });
         let estimate_in = embed(net.estimate.as_ref(), &|| match estimate.is_empty() {
             true => vec![0f32; noisy.len()],
             false => estimate.to_vec(),
@@ -330,6 +335,7 @@ impl StepTape {
             wall_in,
             fourier_in,
             gap_in,
+            role_in,
             estimate_in,
             modulation,
             blocks,
