@@ -83,6 +83,11 @@ pub struct TrainArgs {
     /// (docs/RESULTS.md, "Slot roles"): true or false (default: the preset's, false).
     #[arg(long)]
     pub slot_roles: Option<bool>,
+    /// Whether object tokens get the embedding of their centre and yaw in world form, an anchored
+    /// slot's taken out of its contact box's frame (docs/RESULTS.md, "Slot roles"): true or false
+    /// (default: the preset's, false).
+    #[arg(long)]
+    pub world_features: Option<bool>,
     /// Whether every attention score gets a learned bias from the pair's relation (position and
     /// yaw of one piece in the other's frame, distance): true or false (default: the preset's,
     /// false).
@@ -196,6 +201,9 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     }
     if let Some(slot_roles) = args.slot_roles {
         model.slot_roles = slot_roles;
+    }
+    if let Some(world_features) = args.world_features {
+        model.world_features = world_features;
     }
     if let Some(bands) = args.fourier_bands {
         model.fourier_bands = bands;

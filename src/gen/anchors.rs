@@ -50,6 +50,21 @@ pub fn to_world(cfg: &ModelConfig, contacts: &[f32], mask: &[f32], tokens: &mut 
     convert(cfg, contacts, mask, tokens, false);
 }
 
+/// World features per object slot ([`world_slot_features`]): centre x, y and yaw's cos, sin.
+pub const WORLD_FEATURES: usize = 4;
+
+/// With `world_features` on (see [`ModelConfig::world_features`]): one item's object slots
+/// (`tokens`, the model's frame) as the world sees them — each slot's centre (x, y, token units
+/// about the window centre) and yaw (cos, sin) in world form, `slots × WORLD_FEATURES`. A free
+/// slot's are its own token's; an anchored slot's are what its box-frame offset means in the room,
+/// so that every token carries where its piece stands in one frame, and a nightstand's token can
+/// be compared with the anchored bed's beside it.
+pub fn world_slot_features(cfg: &ModelConfig, tokens: &[f32], contacts: &[f32], mask: &[f32]) -> Vec<f32> {
+    let mut world = tokens.to_vec();
+    to_world(cfg, contacts, mask, &mut world);
+    world.chunks_exact(cfg.token_dim()).flat_map(|t| [t[0], t[1], t[6], t[7]]).collect()
+}
+
 fn convert(cfg: &ModelConfig, contacts: &[f32], mask: &[f32], tokens: &mut [f32], into_model: bool) {
     if cfg.anchor_scale <= 0.0 {
         return;
@@ -149,6 +164,30 @@ mod tests {
         for (a, b) in tokens.iter().zip(&world) {
             assert!((a - b).abs() < 1e-6);
         }
+    }
+
+    #[test]
+    fn world_features_are_an_anchored_slot_in_the_room_and_a_free_slot_as_it_is() {
+        let cfg = cfg();
+        let (contacts, mask) = boxes(&cfg);
+        let dim = cfg.token_dim();
+        let mut tokens: Vec<f32> = (0..2 * cfg.slots() * dim).map(|i| (i % 5) as f32 * 0.1).collect();
+        // Slot 0 of item 0 in box 0's frame (box at (0.5, -0.2) facing +y): local offset (0.5, 0)
+        // × 0.4 is 0.2 along world +y, and a relative yaw of 90° from +y faces world −x.
+        tokens[..8].copy_from_slice(&[0.5, 0.0, 0.3, 0.1, 0.2, 0.3, 0.0, 1.0]);
+        let f = world_slot_features(
+            &cfg,
+            &tokens[..cfg.slots() * dim],
+            &contacts[..cfg.max_contacts * CONTACT_FEATURES],
+            &mask[..cfg.max_contacts],
+        );
+        assert_eq!(f.len(), cfg.slots() * WORLD_FEATURES);
+        for (got, want) in f[..4].iter().zip([0.5, 0.0, -1.0, 0.0]) {
+            assert!((got - want).abs() < 1e-6, "{:?}", &f[..4]);
+        }
+        // A free slot (2 and on: item 0 has two boxes) reads its own centre and yaw.
+        let t = &tokens[2 * dim..3 * dim];
+        assert_eq!(f[2 * WORLD_FEATURES..3 * WORLD_FEATURES], [t[0], t[1], t[6], t[7]]);
     }
 
     #[test]

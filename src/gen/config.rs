@@ -78,6 +78,12 @@ pub struct ModelConfig {
     /// twins. Off in older configs: the model is equivariant to the order of its free slots.
     #[serde(default)]
     pub slot_roles: bool,
+    /// Whether every object token also gets an embedding of where its piece stands in the room —
+    /// centre and yaw in world form, an anchored slot's taken out of its box's frame
+    /// ([`super::anchors::world_slot_features`]) — so that anchored and free pieces meet in one
+    /// frame. Off in older configs.
+    #[serde(default)]
+    pub world_features: bool,
     /// What the denoiser predicts: the noise ε (DDPM's choice, every model before it) or the clean
     /// tokens x₀. Older configs read as ε.
     #[serde(default)]
@@ -229,6 +235,7 @@ impl ModelConfig {
             fourier_bands: 0,
             gap_bounds: None,
             slot_roles: false,
+            world_features: false,
             prediction: Prediction::X0,
             schedule: NoiseSchedule::Linear,
             self_condition: false,
@@ -284,6 +291,7 @@ impl ModelConfig {
             fourier_bands: 0,
             gap_bounds: None,
             slot_roles: false,
+            world_features: false,
             prediction: Prediction::X0,
             schedule: NoiseSchedule::Linear,
             self_condition: false,

@@ -14,9 +14,9 @@ use super::fourier;
 use super::gaps::{self, GAP_FEATURES};
 use super::params::{Init, Linear, Params, layer_norm};
 use super::relations::{self, RELATION_FEATURES};
-use super::roles;
 use super::walls::{self, WALL_FEATURES};
 use super::{GenError, ModelConfig};
+use super::{anchors, roles};
 use crate::scene::RoomType;
 use candle_core::{D, Device, Tensor};
 use std::collections::BTreeMap;
@@ -144,6 +144,9 @@ pub struct Denoiser {
     /// With slot roles: the embedding of a free slot's rank among the free slots, added to its
     /// token.
     pub(super) roles: Option<Linear>,
+    /// With world features: the embedding of a slot's centre and yaw in world form, added to its
+    /// token.
+    pub(super) world: Option<Linear>,
     pub(super) time: [Linear; 2],
     pub(super) contact: [Linear; 2],
     pub(super) contact_kind: Tensor,
@@ -202,6 +205,10 @@ impl Denoiser {
             },
             roles: match cfg.slot_roles {
                 true => Some(p.linear("roles", cfg.slots(), d, false)?),
+                false => None,
+            },
+            world: match cfg.world_features {
+                true => Some(p.linear("world", anchors::WORLD_FEATURES, d, false)?),
                 false => None,
             },
             time: [p.linear("time.0", TIME_FEATURES, d, false)?, p.linear("time.1", d, d, false)?],
@@ -288,6 +295,12 @@ impl Denoiser {
             let features = fourier::slot_features(&self.cfg, &x.flatten_all()?.to_vec1::<f32>()?);
             let width = fourier::features_per_slot(&self.cfg);
             h = (h + layer.forward(&Tensor::from_vec(features, (b, slots, width), x.device())?)?)?;
+        }
+        if let Some(layer) = &self.world {
+            let features = self.slot_features(x, cond, anchors::WORLD_FEATURES, |tokens, contacts, mask, _| {
+                anchors::world_slot_features(&self.cfg, tokens, contacts, mask)
+            })?;
+            h = (h + layer.forward(&features)?)?;
         }
         if let Some(layer) = &self.roles {
             let features =

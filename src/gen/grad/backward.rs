@@ -71,6 +71,9 @@ pub(super) fn run(net: &GradNet, p: &[f32], tape: &Tape, inp: &ChunkInputs, tota
     if let Some(gaps) = &net.gaps {
         gaps.backward(p, g, &step.gap_in, &dh[..objects * d], None);
     }
+    if let Some(world) = &net.world {
+        world.backward(p, g, &step.world_in, &dh[..objects * d], None);
+    }
     if let Some(roles) = &net.roles {
         roles.backward(p, g, &step.role_in, &dh[..objects * d], None);
     }

@@ -14,7 +14,7 @@ use super::{ChunkInputs, ConditionInputs, GradNet};
 use crate::generator::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES};
 use crate::generator::matmul::LinearAt;
 use crate::generator::model::time_feature_values;
-use crate::generator::{fourier, gaps, relations, roles, walls};
+use crate::generator::{anchors, fourier, gaps, relations, roles, walls};
 
 /// A PointNet's activations: ReLU outputs of the first two layers, the third's output and, per
 /// item, the max over the points.
@@ -201,6 +201,8 @@ pub(super) struct StepTape {
     pub(super) fourier_in: Vec<f32>,
     /// With gap features: every object row's ([`gaps::slot_features`]).
     pub(super) gap_in: Vec<f32>,
+    /// With world features: every object row's ([`anchors::world_slot_features`]).
+    pub(super) world_in: Vec<f32>,
     /// With slot roles: every object row's rank features ([`roles::slot_features`]).
     pub(super) role_in: Vec<f32>,
     /// With self-conditioning: the previous clean estimate of every object row (zeros: none).
@@ -275,6 +277,11 @@ impl StepTape {
             }),
             None => Vec::new(),
         };
+        let world_in = embed(net.world.as_ref(), &|| {
+            slot_features(net, cond, noisy, |tokens, contacts, mask, _| {
+                anchors::world_slot_features(cfg, tokens, contacts, mask)
+            })
+        });
         let role_in = embed(net.roles.as_ref(), &|| {
             slot_features(net, cond, noisy, |_, _, mask, _| roles::slot_features(cfg, mask))
         });
@@ -335,6 +342,7 @@ impl StepTape {
             wall_in,
             fourier_in,
             gap_in,
+            world_in,
             role_in,
             estimate_in,
             modulation,

@@ -55,6 +55,7 @@ pub struct GradNet {
     fourier: Option<LinearAt>,
     gaps: Option<LinearAt>,
     roles: Option<LinearAt>,
+    world: Option<LinearAt>,
     estimate: Option<LinearAt>,
     time: [LinearAt; 2],
     contact: [LinearAt; 2],
@@ -190,6 +191,10 @@ impl GradNet {
             },
             gaps: if cfg.gap_bounds.is_some() { Some(linear("gaps", GAP_FEATURES, d)?) } else { None },
             roles: if cfg.slot_roles { Some(linear("roles", cfg.slots(), d)?) } else { None },
+            world: match cfg.world_features {
+                true => Some(linear("world", super::anchors::WORLD_FEATURES, d)?),
+                false => None,
+            },
             estimate: if cfg.self_condition { Some(linear("estimate", cfg.token_dim(), d)?) } else { None },
             time: [linear("time.0", super::config::TIME_FEATURES, d)?, linear("time.1", d, d)?],
             contact: [linear("contact.0", CONTACT_FEATURES, d)?, linear("contact.1", d, d)?],

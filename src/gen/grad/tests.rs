@@ -87,7 +87,7 @@ fn gradients_equal_candles_at_initialisation() {
 fn gradients_equal_candles_with_anchored_slots_relations_self_conditioning_rooms_and_every_weight_set() {
     // Every parameter random (the zero-initialised modulations and outputs too), so every path —
     // the anchored slots' box embedding, the relation bias, the self-conditioning estimate's
-    // embedding, the Fourier and gap features', the slot roles' and the room token included —
+    // embedding, the Fourier and gap features', the slot roles', the world features' and the room token included —
     // carries a gradient.
     let checkpoint = shipped_model(RoomType::Living).unwrap();
     let cfg = ModelConfig {
@@ -98,6 +98,7 @@ fn gradients_equal_candles_with_anchored_slots_relations_self_conditioning_rooms
         fourier_bands: 3,
         gap_bounds: Some(checkpoint.meta.bounds.clone()),
         slot_roles: true,
+        world_features: true,
         ..ModelConfig::tiny(RoomType::Living)
     };
     assert!(cfg.anchor_scale > 0.0);
@@ -124,6 +125,7 @@ fn gradients_equal_candles_with_anchored_slots_relations_self_conditioning_rooms
     assert!(cfg.wall_features && grads.contains_key("walls.weight"));
     assert!(grads.contains_key("estimate.weight") && grads.contains_key("fourier.weight"));
     assert!(grads.contains_key("gaps.weight") && grads.contains_key("roles.weight"));
+    assert!(grads.contains_key("world.weight"));
     // Living and dining rooms in one batch: both rows of the room table learn, the bedroom's not.
     let (room, _) = layout.find("room").unwrap();
     let net = GradNet::new(&cfg, &layout).unwrap();
