@@ -146,6 +146,12 @@ pub struct TrainArgs {
     /// docs/RESULTS.md, "Displaced pieces"). The validation loss sees none.
     #[arg(long, default_value_t = 0.0)]
     pub displaced_pieces: f64,
+    /// Weight of the relation loss: the error of each pair of nearby pieces' relative place (their
+    /// centres within half the window's half side) counts this many times as much as each piece's
+    /// own (0: none; docs/RESULTS.md, "Pieces that do not keep to each other"). Needs the fused
+    /// engine; the validation loss stays without it.
+    #[arg(long, default_value_t = 0.0, value_name = "WEIGHT")]
+    pub relation_loss: f64,
     /// Gradient engine: fused (the hand-written pass on every core) or candle (autograd, the
     /// slower reference it is tested against).
     #[arg(long, default_value = "fused", value_parser = by_config_name::<Engine>)]
@@ -276,6 +282,13 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
         "--displaced-pieces: must be a number between 0 and 1"
     );
     opts.displaced_pieces = args.displaced_pieces;
+    anyhow::ensure!(
+        args.relation_loss.is_finite() && args.relation_loss >= 0.0,
+        "--relation-loss: must be a non-negative number, not {}",
+        args.relation_loss
+    );
+    anyhow::ensure!(args.relation_loss == 0.0 || args.engine == Engine::Fused, "--relation-loss: needs --engine fused");
+    opts.relation_loss = args.relation_loss;
     anyhow::ensure!(
         args.geometry_eta.is_none_or(|eta| (0.0..=2.0).contains(&eta)),
         "--geometry-eta: must be between 0 and 2"

@@ -50,6 +50,20 @@ pub fn to_world(cfg: &ModelConfig, contacts: &[f32], mask: &[f32], tokens: &mut 
     convert(cfg, contacts, mask, tokens, false);
 }
 
+/// Per object slot of one item, the 2 × 2 map (row-major) from a change of its centre's x, y in
+/// the model's frame to the change in world form: `anchor_scale` times its box's rotation for an
+/// anchored slot (the map is affine, this is its linear part), the identity for a free one.
+pub fn error_maps(cfg: &ModelConfig, contacts: &[f32], mask: &[f32]) -> Vec<[f32; 4]> {
+    let mut maps = vec![[1.0, 0.0, 0.0, 1.0]; cfg.slots()];
+    if cfg.anchor_scale > 0.0 {
+        let scale = cfg.anchor_scale as f32;
+        for (slot, a) in anchors(cfg, contacts, mask) {
+            maps[slot] = [scale * a.cos, -scale * a.sin, scale * a.sin, scale * a.cos];
+        }
+    }
+    maps
+}
+
 /// World features per object slot ([`world_slot_features`]): centre x, y and yaw's cos, sin.
 pub const WORLD_FEATURES: usize = 4;
 
@@ -188,6 +202,35 @@ mod tests {
         // A free slot (2 and on: item 0 has two boxes) reads its own centre and yaw.
         let t = &tokens[2 * dim..3 * dim];
         assert_eq!(f[2 * WORLD_FEATURES..3 * WORLD_FEATURES], [t[0], t[1], t[6], t[7]]);
+    }
+
+    #[test]
+    fn an_error_map_is_the_linear_part_of_to_world() {
+        let cfg = cfg();
+        let (contacts, mask) = boxes(&cfg);
+        let (k, dim) = (cfg.max_contacts, cfg.token_dim());
+        let (contacts, mask) = (&contacts[..k * CONTACT_FEATURES], &mask[..k]);
+        let maps = error_maps(&cfg, contacts, mask);
+        let base: Vec<f32> = (0..cfg.slots() * dim).map(|i| (i % 7) as f32 * 0.05).collect();
+        let mut moved = base.clone();
+        // Every slot's centre moves by (0.1, −0.2) in the model's frame.
+        for t in moved.chunks_exact_mut(dim) {
+            t[0] += 0.1;
+            t[1] -= 0.2;
+        }
+        let (mut a, mut b) = (base, moved);
+        to_world(&cfg, contacts, mask, &mut a);
+        to_world(&cfg, contacts, mask, &mut b);
+        for (slot, m) in maps.iter().enumerate() {
+            let want = [m[0] * 0.1 - m[1] * 0.2, m[2] * 0.1 - m[3] * 0.2];
+            let got = [b[slot * dim] - a[slot * dim], b[slot * dim + 1] - a[slot * dim + 1]];
+            assert!(
+                (got[0] - want[0]).abs() < 1e-6 && (got[1] - want[1]).abs() < 1e-6,
+                "slot {slot}: {got:?} {want:?}"
+            );
+        }
+        assert_eq!(maps[2], [1.0, 0.0, 0.0, 1.0], "a free slot");
+        assert!((maps[0][2] - 0.4).abs() < 1e-6, "box 0 faces +y: model x is world y, × 0.4");
     }
 
     #[test]

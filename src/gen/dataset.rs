@@ -214,6 +214,27 @@ pub struct NoisyBatch {
     /// For a self-conditioned model: whether each scene gets the model's own first clean estimate
     /// (half of them, drawn); empty otherwise.
     pub self_condition: Vec<bool>,
+    /// The pairs of pieces whose relative places the relation loss holds
+    /// ([`NoisyBatch::hold_relations`]); empty without it.
+    pub relations: Vec<RelationPair>,
+}
+
+/// Two pieces of a training scene whose relative place the relation loss holds: the error of the
+/// one's clean estimate of its centre less the other's, in world form, counts on top of each one's
+/// own error ([`NoisyBatch::hold_relations`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RelationPair {
+    /// The scene (batch item).
+    pub item: usize,
+    /// The two slots.
+    pub slots: [usize; 2],
+    /// How much the pair's squared error counts: the loss's weight times the scene's own weight
+    /// (its Min-SNR weight, as its tokens' errors count).
+    pub weight: f32,
+    /// Per slot, the 2 × 2 map (row-major) from an error in its centre's x, y in the model's frame
+    /// to the error in world form: the identity for a free slot, `anchor_scale` times the box's
+    /// rotation for an anchored one ([`anchors`]).
+    pub maps: [[f32; 4]; 2],
 }
 
 impl NoisyBatch {
@@ -264,7 +285,43 @@ impl NoisyBatch {
                 })
                 .collect(),
         };
-        NoisyBatch { host, t, noise, target, noisy, loss_weights, self_condition }
+        NoisyBatch { host, t, noise, target, noisy, loss_weights, self_condition, relations: Vec::new() }
+    }
+
+    /// The relation loss: every pair of pieces of a scene whose clean centres lie within `reach`
+    /// token units of each other becomes a [`RelationPair`] of weight `weight` (times the scene's
+    /// own weight). Without it the loss counts each piece's error alone, so a nightstand's estimate
+    /// may move with the noise while its bed's moves the other way — and a sampled nightstand
+    /// stands in its bed (docs/RESULTS.md, "Pieces that do not keep to each other"). Draws nothing.
+    pub fn hold_relations(&mut self, weight: f64, reach: f64, schedule: &Schedule, cfg: &ModelConfig) {
+        let (dim, slots, k) = (cfg.token_dim(), cfg.slots(), cfg.max_contacts);
+        let per_item = slots * dim;
+        let empty = cfg.classes() - 1;
+        for item in 0..self.host.size {
+            let clean = &self.host.tokens[item * per_item..(item + 1) * per_item];
+            let contacts = &self.host.contacts[item * k * CONTACT_FEATURES..(item + 1) * k * CONTACT_FEATURES];
+            let mask = &self.host.contact_mask[item * k..(item + 1) * k];
+            let mut world = clean.to_vec();
+            anchors::to_world(cfg, contacts, mask, &mut world);
+            let maps = anchors::error_maps(cfg, contacts, mask);
+            let ab = schedule.alpha_bars[self.t[item]];
+            let scene_weight = cfg.prediction.loss_weight(ab / (1.0 - ab), cfg.min_snr, cfg.min_snr_floor);
+            let real: Vec<usize> =
+                (0..slots).filter(|&s| tokens::slot_class(&clean[s * dim..(s + 1) * dim], cfg) != empty).collect();
+            for (n, &i) in real.iter().enumerate() {
+                for &j in &real[n + 1..] {
+                    let (a, b) = (&world[i * dim..], &world[j * dim..]);
+                    if ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt() as f64 <= reach {
+                        self.relations.push(RelationPair {
+                            item,
+                            slots: [i, j],
+                            weight: (weight * scene_weight) as f32,
+                            maps: [maps[i], maps[j]],
+                        });
+                    }
+                }
+            }
+        }
     }
 
     /// Input perturbation (Ning et al. 2023, DDPM-IP): adds √(1 − ᾱ_t) γ ξ to the noisy tokens, ξ

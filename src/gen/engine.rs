@@ -79,6 +79,12 @@ impl CandleGradients {
     }
 
     fn loss_tensor(&mut self, params: &[f32], batch: &NoisyBatch) -> Result<Tensor, GenError> {
+        if !batch.relations.is_empty() {
+            return Err(GenError::Input {
+                path: Default::default(),
+                message: "the relation loss is the fused engine's alone; train with --engine fused".into(),
+            });
+        }
         for (name, tensor) in self.layout.tensors(params)? {
             self.vars[&name].set(&tensor)?;
         }

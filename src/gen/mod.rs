@@ -45,7 +45,7 @@ pub use adamw::{AdamW, AdamWConfig};
 pub use checkpoint::{Checkpoint, CheckpointMeta, SamplingDefaults, TrainingInfo};
 pub use config::{AnchoredYaw, ModelConfig, NoiseSchedule, Prediction};
 pub use count_prior::CountPrior;
-pub use dataset::{Example, HostBatch, NoisyBatch, load_split, split_files};
+pub use dataset::{Example, HostBatch, NoisyBatch, RelationPair, load_split, split_files};
 pub use engine::{Engine, Gradients};
 pub use error::GenError;
 pub use features::{COUNT_SCALE, Dihedral, Features};

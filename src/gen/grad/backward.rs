@@ -15,8 +15,9 @@ pub(super) fn run(net: &GradNet, p: &[f32], tape: &Tape, inp: &ChunkInputs, tota
     let rows = cond.row_item.len();
     let row_item = &cond.row_item;
 
-    let dout: Vec<f32> =
+    let mut dout: Vec<f32> =
         step.out.iter().zip(inp.target).zip(inp.weights).map(|((o, n), w)| 2.0 * w * (o - n) / total).collect();
+    super::relation_loss(cfg, &step.out, inp.target, &inp.relations, total, Some(&mut dout));
     let mut dfinal = vec![0f32; objects * d];
     net.output.backward(p, g, &step.final_m, &dout, Some(&mut dfinal));
     let mut dmod: Vec<Vec<f32>> = step.modulation.iter().map(|m| vec![0f32; m.len()]).collect();

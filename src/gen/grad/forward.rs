@@ -443,7 +443,7 @@ impl Tape {
     }
 
     /// This chunk's share of the batch loss Σ w (output − target)² / `total`.
-    pub(super) fn loss(&self, inp: &ChunkInputs, total: f32) -> f64 {
+    pub(super) fn loss(&self, cfg: &crate::generator::ModelConfig, inp: &ChunkInputs, total: f32) -> f64 {
         let sum: f64 = self
             .step
             .out
@@ -452,6 +452,6 @@ impl Tape {
             .zip(inp.weights)
             .map(|((o, n), w)| (w * (o - n) * (o - n)) as f64)
             .sum();
-        sum / total as f64
+        sum / total as f64 + super::relation_loss(cfg, &self.step.out, inp.target, &inp.relations, total, None)
     }
 }

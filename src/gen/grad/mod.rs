@@ -19,7 +19,7 @@ mod forward;
 mod ops;
 
 use super::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES, RELATION_HIDDEN};
-use super::dataset::NoisyBatch;
+use super::dataset::{NoisyBatch, RelationPair};
 use super::flat::ParamLayout;
 use super::gaps::GAP_FEATURES;
 use super::matmul::LinearAt;
@@ -142,6 +142,47 @@ struct ChunkInputs<'a> {
     weights: &'a [f32],
     /// Per item: whether it is self-conditioned (empty: none is).
     self_condition: &'a [bool],
+    /// The relation loss's pairs of this chunk's items, `item` counted from the chunk's first.
+    relations: Vec<RelationPair>,
+}
+
+/// The relation loss of a chunk's output `out` against its `target` (the batch's share, divided by
+/// `total`), and with `dout` its gradient added there: each pair's error of one centre less the
+/// other's, in world form ([`RelationPair::maps`]), squared and weighed. The error of a clean
+/// estimate is the output's error times one factor per scene and prediction, which the pair's
+/// weight (the scene's own weight) already carries, as for the tokens' own loss.
+fn relation_loss(
+    cfg: &ModelConfig,
+    out: &[f32],
+    target: &[f32],
+    pairs: &[RelationPair],
+    total: f32,
+    mut dout: Option<&mut [f32]>,
+) -> f64 {
+    let (dim, per_item) = (cfg.token_dim(), cfg.slots() * cfg.token_dim());
+    let mut loss = 0.0;
+    for pair in pairs {
+        let at = |slot: usize| pair.item * per_item + slot * dim;
+        let error = |k: usize| -> [f32; 2] {
+            let m = &pair.maps[k];
+            let at = at(pair.slots[k]);
+            let e = [out[at] - target[at], out[at + 1] - target[at + 1]];
+            [m[0] * e[0] + m[1] * e[1], m[2] * e[0] + m[3] * e[1]]
+        };
+        let (a, b) = (error(0), error(1));
+        let r = [a[0] - b[0], a[1] - b[1]];
+        loss += f64::from(pair.weight * (r[0] * r[0] + r[1] * r[1]) / total);
+        if let Some(dout) = dout.as_deref_mut() {
+            for (k, sign) in [(0, 1.0f32), (1, -1.0)] {
+                let m = &pair.maps[k];
+                let at = at(pair.slots[k]);
+                let g = 2.0 * sign * pair.weight / total;
+                dout[at] += g * (m[0] * r[0] + m[2] * r[1]);
+                dout[at + 1] += g * (m[1] * r[0] + m[3] * r[1]);
+            }
+        }
+    }
+    loss
 }
 
 impl GradNet {
@@ -222,8 +263,11 @@ impl GradNet {
     /// The batch's weighted L_simple at `params`.
     pub fn loss(&self, params: &[f32], batch: &NoisyBatch) -> f64 {
         let total = batch.weight_total();
-        let parts: Vec<f64> =
-            self.chunks(batch).par_iter().map(|c| forward::Tape::run(self, params, c).loss(c, total)).collect();
+        let parts: Vec<f64> = self
+            .chunks(batch)
+            .par_iter()
+            .map(|c| forward::Tape::run(self, params, c).loss(&self.cfg, c, total))
+            .collect();
         parts.iter().sum()
     }
 
@@ -238,7 +282,7 @@ impl GradNet {
                 let tape = forward::Tape::run(self, params, c);
                 let mut grads = vec![0f32; self.params];
                 backward::run(self, params, &tape, c, total, &mut grads);
-                (tape.loss(c, total), grads)
+                (tape.loss(&self.cfg, c, total), grads)
             })
             .collect();
         let mut parts = parts.into_iter();
@@ -271,6 +315,12 @@ impl GradNet {
                         true => &[],
                         false => &batch.self_condition[start..end],
                     },
+                    relations: batch
+                        .relations
+                        .iter()
+                        .filter(|r| (start..end).contains(&r.item))
+                        .map(|r| RelationPair { item: r.item - start, ..r.clone() })
+                        .collect(),
                 }
             })
             .collect()

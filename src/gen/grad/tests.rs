@@ -144,3 +144,68 @@ fn gradients_equal_candles_with_anchored_slots_relations_self_conditioning_rooms
     assert_eq!(learns, held);
     assert!(held.iter().filter(|&&h| h).count() >= 3, "{held:?}");
 }
+
+#[test]
+fn the_relation_loss_counts_one_centre_less_the_other_in_world_form() {
+    let cfg = ModelConfig::tiny(RoomType::Bedroom);
+    let (dim, per_item) = (cfg.token_dim(), cfg.slots() * cfg.token_dim());
+    let (mut out, target) = (vec![0f32; 2 * per_item], vec![0f32; 2 * per_item]);
+    // Item 1: slot 0 is 0.3 off in the model's x, slot 2 is 0.1 off in y. Slot 0 is anchored to a
+    // box facing +y (world = 0.4 × the turn of a quarter: model x is world y), slot 2 is free.
+    out[per_item] = 0.3;
+    out[per_item + 2 * dim + 1] = 0.1;
+    let pair =
+        RelationPair { item: 1, slots: [0, 2], weight: 2.0, maps: [[0.0, -0.4, 0.4, 0.0], [1.0, 0.0, 0.0, 1.0]] };
+    // World errors: slot 0 (0, 0.12), slot 2 (0, 0.1); their difference (0, 0.02), squared 4e-4,
+    // times the weight 2, over the total 10.
+    let mut dout = vec![0f32; 2 * per_item];
+    let loss = relation_loss(&cfg, &out, &target, std::slice::from_ref(&pair), 10.0, Some(&mut dout));
+    assert!((loss - 2.0 * 4e-4 / 10.0).abs() < 1e-9, "{loss}");
+    // d/d out: 2 × 2 / 10 × Mᵀ r for slot 0 (Mᵀ (0, 0.02) = (0.008, 0)), minus the same with the
+    // identity for slot 2; nothing else moves.
+    let g = 0.4f32;
+    let want =
+        [(per_item, g * 0.008), (per_item + 1, 0.0), (per_item + 2 * dim, 0.0), (per_item + 2 * dim + 1, -g * 0.02)];
+    for (at, v) in want {
+        assert!((dout[at] - v).abs() < 1e-7, "{at}: {} against {v}", dout[at]);
+    }
+    let touched: Vec<usize> = want.iter().map(|w| w.0).collect();
+    assert!(dout.iter().enumerate().all(|(k, &v)| v == 0.0 || touched.contains(&k)));
+    // A finite difference of the loss along slot 0's x agrees with the gradient.
+    let eps = 1e-3;
+    out[per_item] += eps;
+    let up = relation_loss(&cfg, &out, &target, std::slice::from_ref(&pair), 10.0, None);
+    out[per_item] -= 2.0 * eps;
+    let down = relation_loss(&cfg, &out, &target, std::slice::from_ref(&pair), 10.0, None);
+    assert!(((up - down) / (2.0 * eps as f64) - f64::from(dout[per_item])).abs() < 1e-5);
+}
+
+#[test]
+fn held_relations_pair_the_nearby_pieces_of_each_scene_with_its_own_weight() {
+    let cfg = ModelConfig {
+        min_snr: Some(5.0),
+        min_snr_floor: Some(1.0),
+        prediction: crate::generator::Prediction::V,
+        ..ModelConfig::tiny(RoomType::Bedroom)
+    };
+    let checkpoint = shipped_model(RoomType::Bedroom).unwrap();
+    let mut b = batch(&[RoomType::Bedroom], &cfg, &checkpoint.meta.bounds, 6);
+    let schedule = Schedule::linear(cfg.diffusion_steps);
+    b.hold_relations(2.0, 0.5, &schedule, &cfg);
+    assert!(!b.relations.is_empty());
+    let (dim, per_item) = (cfg.token_dim(), cfg.slots() * cfg.token_dim());
+    for r in &b.relations {
+        let ab = schedule.alpha_bars[b.t[r.item]];
+        let want = 2.0 * cfg.prediction.loss_weight(ab / (1.0 - ab), cfg.min_snr, cfg.min_snr_floor);
+        assert!((f64::from(r.weight) - want).abs() < 1e-6 * want.max(1.0));
+        assert!(r.slots[0] < r.slots[1]);
+        for &s in &r.slots {
+            let t = &b.host.tokens[r.item * per_item + s * dim..r.item * per_item + (s + 1) * dim];
+            assert_ne!(crate::generator::tokens::slot_class(t, &cfg), cfg.classes() - 1, "pieces only");
+        }
+    }
+    // Far apart is left out: with no reach no pair is held.
+    let mut none = batch(&[RoomType::Bedroom], &cfg, &checkpoint.meta.bounds, 6);
+    none.hold_relations(2.0, 0.0, &schedule, &cfg);
+    assert!(none.relations.iter().all(|r| r.weight > 0.0) && none.relations.len() < b.relations.len());
+}
