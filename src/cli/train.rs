@@ -80,12 +80,13 @@ pub struct TrainArgs {
     pub gap_features: Option<bool>,
     /// Whether free slots hold their pieces round the room (by the angle about the window centre)
     /// and each gets an embedding of its rank, so that they are no longer each other's twins
-    /// (docs/RESULTS.md, "Slot roles"): true or false (default: the preset's, false).
+    /// (docs/RESULTS.md, "Pieces that do not keep to each other"): true or false (default: the
+    /// preset's, false).
     #[arg(long)]
     pub slot_roles: Option<bool>,
     /// Whether object tokens get the embedding of their centre and yaw in world form, an anchored
-    /// slot's taken out of its contact box's frame (docs/RESULTS.md, "Slot roles"): true or false
-    /// (default: the preset's, false).
+    /// slot's taken out of its contact box's frame (docs/RESULTS.md, "Pieces that do not keep to
+    /// each other"): true or false (default: the preset's, false).
     #[arg(long)]
     pub world_features: Option<bool>,
     /// Whether every attention score gets a learned bias from the pair's relation (position and

@@ -130,6 +130,36 @@ fn train_cli_with(data: &Path, out: &Path, extra: &[&str]) -> std::process::Outp
 }
 
 #[test]
+fn a_model_with_slot_roles_world_features_and_the_relation_loss_trains_loads_and_generates() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dataset(dir.path(), RoomType::Bedroom);
+    let model = dir.path().join("model");
+    let flags = ["--slot-roles", "true", "--world-features", "true", "--relation-loss", "1"];
+    let o = train_cli_with(&data, &model, &flags);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let meta = Checkpoint::load(&model).unwrap().meta;
+    assert!(meta.model.slot_roles && meta.model.world_features, "recorded in config.json");
+    let out = dir.path().join("out");
+    let input = root().join("scenes/examples/bedroom_rect.json");
+    let o = shade_sim(&[
+        "-q",
+        "generate",
+        "--input",
+        input.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--model",
+        model.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(out.join("bedroom_rect_0.json").exists());
+    // The relation loss is the fused engine's alone.
+    let o = train_cli_with(&data, &dir.path().join("candle"), &["--relation-loss", "1", "--engine", "candle"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).starts_with("error: --relation-loss: needs --engine fused"), "{}", stderr(&o));
+}
+
+#[test]
 fn extra_data_joins_the_training_set_and_must_be_of_the_same_room_type() {
     let dir = tempfile::tempdir().unwrap();
     let data = dataset(dir.path(), RoomType::Bedroom);
@@ -359,6 +389,7 @@ fn train_writes_a_checkpoint_and_generate_is_deterministic() {
         (["--geometry-eta", "3"], "error: --geometry-eta: must be between 0 and 2"),
         (["--lr", "-1"], "error: --lr: must be a positive number"),
         (["--ema-decay", "1"], "error: --ema-decay: must be a number between 0 and 1, not 1"),
+        (["--relation-loss", "-1"], "error: --relation-loss: must be a non-negative number, not -1"),
     ] {
         let o = train_cli_with(&data, &dir.path().join("refused"), &extra);
         assert_eq!(o.status.code(), Some(2));
