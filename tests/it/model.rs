@@ -129,6 +129,12 @@ fn train_cli_with(data: &Path, out: &Path, extra: &[&str]) -> std::process::Outp
     shade_sim(&[&args[..], extra].concat())
 }
 
+/// `shade-sim -q generate --input INPUT --out OUT --model MODEL EXTRA…`.
+fn generate_cli(input: &Path, out: &Path, model: &Path, extra: &[&str]) -> std::process::Output {
+    let (i, o, m) = (input.to_str().unwrap(), out.to_str().unwrap(), model.to_str().unwrap());
+    shade_sim(&[&["-q", "generate", "--input", i, "--out", o, "--model", m][..], extra].concat())
+}
+
 #[test]
 fn a_model_with_slot_roles_world_features_and_the_relation_loss_trains_loads_and_generates() {
     let dir = tempfile::tempdir().unwrap();
@@ -141,16 +147,7 @@ fn a_model_with_slot_roles_world_features_and_the_relation_loss_trains_loads_and
     assert!(meta.model.slot_roles && meta.model.world_features, "recorded in config.json");
     let out = dir.path().join("out");
     let input = root().join("scenes/examples/bedroom_rect.json");
-    let o = shade_sim(&[
-        "-q",
-        "generate",
-        "--input",
-        input.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--model",
-        model.to_str().unwrap(),
-    ]);
+    let o = generate_cli(&input, &out, &model, &[]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(out.join("bedroom_rect_0.json").exists());
     // The relation loss is the fused engine's alone.
@@ -429,21 +426,7 @@ fn train_writes_a_checkpoint_and_generate_is_deterministic() {
     // By default every sample is repaired: the same as sampling with --no-repair and running
     // `repair` on the result.
     let unrepaired = dir.path().join("unrepaired");
-    let o = shade_sim(&[
-        "-q",
-        "generate",
-        "--input",
-        input.to_str().unwrap(),
-        "--out",
-        unrepaired.to_str().unwrap(),
-        "--samples",
-        "2",
-        "--seed",
-        "5",
-        "--model",
-        model.to_str().unwrap(),
-        "--no-repair",
-    ]);
+    let o = generate_cli(&input, &unrepaired, &model, &["--samples", "2", "--seed", "5", "--no-repair"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let repaired = dir.path().join("repaired");
     let o = shade_sim(&["-q", "repair", unrepaired.to_str().unwrap(), "--out", repaired.to_str().unwrap()]);
