@@ -12,9 +12,8 @@ use shade_sim::scene::{Category, Object, Scene};
 
 /// `o`'s centre in the frame of `of` (x along its width, y along its depth).
 fn in_frame(o: &Object, of: &Object) -> (f64, f64) {
-    let (dx, dy) = (o.center[0] - of.center[0], o.center[1] - of.center[1]);
-    let (c, s) = (of.yaw.cos(), of.yaw.sin());
-    (c * dx + s * dy, -s * dx + c * dy)
+    let local = of.obox().to_local(o.obox().center);
+    (local.x, local.y)
 }
 
 fn nearest<'a>(o: &Object, among: &[&'a Object]) -> Option<&'a Object> {
