@@ -94,6 +94,12 @@ pub struct TrainArgs {
     /// false).
     #[arg(long)]
     pub relation_bias: Option<bool>,
+    /// Whether what each token takes from the others in attention also holds a learned map of
+    /// their relation (the other's position and yaw in its frame), so that a nightstand reads its
+    /// bed's offset in its own frame (docs/RESULTS.md, "Relations in the values"): true or false
+    /// (default: the preset's, false).
+    #[arg(long)]
+    pub relation_values: Option<bool>,
     /// Whether the model is self-conditioned on its previous clean estimate: true or false
     /// (default: the preset's, false; needs x0-prediction).
     #[arg(long)]
@@ -223,6 +229,9 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     }
     if let Some(relation_bias) = args.relation_bias {
         model.relation_bias = relation_bias;
+    }
+    if let Some(relation_values) = args.relation_values {
+        model.relation_values = relation_values;
     }
     if let Some(self_condition) = args.self_condition {
         model.self_condition = self_condition;

@@ -56,6 +56,14 @@ pub struct ModelConfig {
     /// and yaw of one in the other's frame, distance; [`super::relations`]). Off in older configs.
     #[serde(default)]
     pub relation_bias: bool,
+    /// Relation values: in every block's attention, what a token takes from another also holds a
+    /// learned linear map of the two pieces' relation (the other's position and yaw in its own
+    /// frame; [`super::relations::value_features`]), so that a nightstand attending to its bed
+    /// reads the bed's offset in its own frame, not only the bed's absolute place (Shaw et al.'s
+    /// relative positions, on the values). Unlike the relation bias, which only chooses whom a
+    /// token attends to, this hands the relation itself to the token. Off in older configs.
+    #[serde(default)]
+    pub relation_values: bool,
     /// Whether every object token gets an embedding of its centre's distances to the walls along
     /// its own axes, measured on the noisy tokens and the floor-plan points ([`super::walls`]).
     /// Off in older configs.
@@ -231,6 +239,7 @@ impl ModelConfig {
             anchor_scale: Self::ANCHOR_SCALE,
             anchored_yaw: AnchoredYaw::World,
             relation_bias: false,
+            relation_values: false,
             wall_features: true,
             fourier_bands: 0,
             gap_bounds: None,
@@ -287,6 +296,7 @@ impl ModelConfig {
             anchor_scale: Self::ANCHOR_SCALE,
             anchored_yaw: AnchoredYaw::World,
             relation_bias: true,
+            relation_values: false,
             wall_features: true,
             fourier_bands: 0,
             gap_bounds: None,

@@ -13,7 +13,7 @@ use super::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES, RELATION_HI
 use super::fourier;
 use super::gaps::{self, GAP_FEATURES};
 use super::params::{Init, Linear, Params, layer_norm};
-use super::relations::{self, RELATION_FEATURES};
+use super::relations::{self, RELATION_FEATURES, RELATION_VALUE_FEATURES};
 use super::walls::{self, WALL_FEATURES};
 use super::{GenError, ModelConfig};
 use super::{anchors, roles};
@@ -71,6 +71,9 @@ pub(super) struct Block {
     pub(super) proj: Linear,
     pub(super) fc1: Linear,
     pub(super) fc2: Linear,
+    /// With relation values: the map from a pair's value features to what the pair adds to the
+    /// attention's values (d outputs, head h's in its dh columns), zero at the start.
+    pub(super) relation_values: Option<Linear>,
     heads: usize,
 }
 
@@ -83,25 +86,37 @@ impl Block {
             proj: p.linear(&format!("{name}.proj"), d, d, false)?,
             fc1: p.linear(&format!("{name}.fc1"), d, cfg.mlp_ratio * d, false)?,
             fc2: p.linear(&format!("{name}.fc2"), cfg.mlp_ratio * d, d, false)?,
+            relation_values: match cfg.relation_values {
+                true => Some(p.linear(&format!("{name}.relation_values"), RELATION_VALUE_FEATURES, d, true)?),
+                false => None,
+            },
             heads: cfg.heads,
         })
     }
 
-    /// `x` (B, N, d), `c` = SiLU(condition) (B, d), `bias` (B, 1, 1, N) additive attention mask.
-    fn forward(&self, x: &Tensor, c: &Tensor, bias: Option<&Tensor>) -> Result<Tensor, GenError> {
+    /// `x` (B, N, d), `c` = SiLU(condition) (B, d), `bias` (B, 1, 1, N) additive attention mask,
+    /// `pairs` (B, N, N, [`RELATION_VALUE_FEATURES`]) the pairs' value features where the model
+    /// has relation values.
+    fn forward(
+        &self,
+        x: &Tensor,
+        c: &Tensor,
+        bias: Option<&Tensor>,
+        pairs: Option<&Tensor>,
+    ) -> Result<Tensor, GenError> {
         let d = x.dim(D::Minus1)?;
         let m = self.modulation.forward(c)?;
         let part = |i: usize| -> Result<Tensor, GenError> { Ok(m.narrow(1, i * d, d)?.unsqueeze(1)?) };
         let (shift1, scale1, gate1) = (part(0)?, part(1)?, part(2)?);
         let (shift2, scale2, gate2) = (part(3)?, part(4)?, part(5)?);
         let h = modulate(&layer_norm(x)?, &shift1, &scale1)?;
-        let x = (x + self.attention(&h, bias)?.broadcast_mul(&gate1)?)?;
+        let x = (x + self.attention(&h, bias, pairs)?.broadcast_mul(&gate1)?)?;
         let h = modulate(&layer_norm(&x)?, &shift2, &scale2)?;
         let h = self.fc2.forward(&self.fc1.forward(&h)?.silu()?)?;
         Ok((x + h.broadcast_mul(&gate2)?)?)
     }
 
-    fn attention(&self, h: &Tensor, bias: Option<&Tensor>) -> Result<Tensor, GenError> {
+    fn attention(&self, h: &Tensor, bias: Option<&Tensor>, pairs: Option<&Tensor>) -> Result<Tensor, GenError> {
         let (b, n, d) = h.dims3()?;
         let dh = d / self.heads;
         let qkv = self.qkv.forward(h)?.reshape((b, n, 3, self.heads, dh))?;
@@ -114,7 +129,17 @@ impl Block {
             scores = scores.broadcast_add(bias)?;
         }
         let weights = candle_nn::ops::softmax(&scores, D::Minus1)?;
-        let out = weights.matmul(&v)?.transpose(1, 2)?.reshape((b, n, d))?;
+        let mut out = weights.matmul(&v)?;
+        if let (Some(layer), Some(pairs)) = (&self.relation_values, pairs) {
+            // Head h adds W_h Σ_j p_ij f_ij + b_h: the weighted relations (B, heads, N, F), then
+            // each head's rows of the map.
+            let f = pairs.dim(3)?;
+            let weighted = weights.unsqueeze(4)?.broadcast_mul(&pairs.unsqueeze(1)?)?.sum(3)?;
+            let map = layer.weight().reshape((self.heads, dh, f))?.transpose(1, 2)?.unsqueeze(0)?;
+            let bias = layer.bias().reshape((1, self.heads, 1, dh))?;
+            out = (out + weighted.broadcast_matmul(&map)?.broadcast_add(&bias)?)?;
+        }
+        let out = out.transpose(1, 2)?.reshape((b, n, d))?;
         self.proj.forward(&out)
     }
 }
@@ -332,8 +357,12 @@ impl Denoiser {
                 None => rel,
             });
         }
+        let pairs = match self.cfg.relation_values {
+            true => Some(self.pair_tensor(x, cond, RELATION_VALUE_FEATURES, relations::value_features)?),
+            false => None,
+        };
         for block in &self.blocks {
-            h = block.forward(&h, &c, bias.as_ref())?;
+            h = block.forward(&h, &c, bias.as_ref(), pairs.as_ref())?;
         }
         let h = h.narrow(1, 0, slots)?;
         let d = self.cfg.d_model;
@@ -376,6 +405,20 @@ impl Denoiser {
     /// The relation bias (B, heads, N, N) of the noisy tokens `x` and the contact boxes (which
     /// are rows only with `contact_tokens`), from features computed on the host.
     fn relation_bias(&self, relation: &[Linear; 2], x: &Tensor, cond: &CondTensors) -> Result<Tensor, GenError> {
+        let f = self.pair_tensor(x, cond, RELATION_FEATURES, relations::pair_features)?;
+        let out = relation[1].forward(&relation[0].forward(&f)?.silu()?)?;
+        Ok(out.permute((0, 3, 1, 2))?.contiguous()?)
+    }
+
+    /// Features (B, N, N, `width`) of every ordered pair of tokens (the object slots, then the
+    /// contact boxes where they are rows), computed on the host from their poses by `of_poses`.
+    fn pair_tensor(
+        &self,
+        x: &Tensor,
+        cond: &CondTensors,
+        width: usize,
+        of_poses: fn(&[relations::TokenPose]) -> Vec<f32>,
+    ) -> Result<Tensor, GenError> {
         let cfg = &self.cfg;
         let (b, slots, dim) = x.dims3()?;
         let k = cfg.max_contacts;
@@ -383,7 +426,7 @@ impl Denoiser {
         let contacts = cond.contacts.flatten_all()?.to_vec1::<f32>()?;
         let mask = cond.contact_mask.flatten_all()?.to_vec1::<f32>()?;
         let n = if cfg.contact_tokens { slots + k } else { slots };
-        let mut features = Vec::with_capacity(b * n * n * RELATION_FEATURES);
+        let mut features = Vec::with_capacity(b * n * n * width);
         for item in 0..b {
             let mut poses = relations::poses(
                 cfg,
@@ -393,11 +436,9 @@ impl Denoiser {
                 true,
             );
             poses.truncate(n);
-            features.extend(relations::pair_features(&poses));
+            features.extend(of_poses(&poses));
         }
-        let f = Tensor::from_vec(features, (b, n, n, RELATION_FEATURES), x.device())?;
-        let out = relation[1].forward(&relation[0].forward(&f)?.silu()?)?;
-        Ok(out.permute((0, 3, 1, 2))?.contiguous()?)
+        Ok(Tensor::from_vec(features, (b, n, n, width), x.device())?)
     }
 }
 
@@ -468,7 +509,7 @@ mod tests {
         let x = random(&[2, 25, cfg.d_model], 5);
         let c = random(&[2, cfg.d_model], 6);
         for block in &model.blocks {
-            let y = block.forward(&x, &c, None).unwrap();
+            let y = block.forward(&x, &c, None, None).unwrap();
             let diff = (y - &x).unwrap().abs().unwrap().max_all().unwrap().to_scalar::<f32>().unwrap();
             assert_eq!(diff, 0.0);
         }

@@ -139,6 +139,16 @@ pub struct Linear {
 }
 
 impl Linear {
+    /// The weight (output × input).
+    pub fn weight(&self) -> &Tensor {
+        &self.weight
+    }
+
+    /// The bias (output).
+    pub fn bias(&self) -> &Tensor {
+        &self.bias
+    }
+
     /// Applies the layer to `x` of shape (…, input).
     pub fn forward(&self, x: &Tensor) -> Result<Tensor, GenError> {
         let dims = x.dims().to_vec();

@@ -7,12 +7,20 @@
 //! [`super::anchors`]) and the contact boxes. A transformer that sees only absolute positions must
 //! learn rotations and differences to put a nightstand beside a bed's head; this hands it the
 //! relation directly. Not here: the MLP itself (both engines) and the attention.
+//!
+//! With `relation_values` on ([`ModelConfig::relation_values`]), the pairs' [`value_features`]
+//! also reach what a token takes from the others: head h of token i adds W_h Σ_j p_ij f_ij to its
+//! attention output, a learned linear map of the relations weighed by its own attention weights.
 
 use super::config::CONTACT_FEATURES;
 use super::{ModelConfig, anchors};
 
 /// Features of one ordered pair of tokens.
 pub const RELATION_FEATURES: usize = 5;
+
+/// Value features of one ordered pair: [`pair_features`]' five, then how far j is from i along
+/// each of i's axes whichever side it is on (|x|, |y| in i's frame).
+pub const RELATION_VALUE_FEATURES: usize = 7;
 
 /// Where a token is: position (token units, relative to the window centre) and unit yaw.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -66,6 +74,17 @@ pub fn pair_features(poses: &[TokenPose]) -> Vec<f32> {
     out
 }
 
+/// The value features of every ordered pair (i, j) of `poses`, row-major over i then j
+/// (n² × [`RELATION_VALUE_FEATURES`]). A nightstand beside its bed's either side, or a chair at
+/// either end of its table, is as far along the axis on both sides: the sign says which side, the
+/// magnitude how far, and a linear map of the two can say "4 cm beside it" for both.
+pub fn value_features(poses: &[TokenPose]) -> Vec<f32> {
+    pair_features(poses)
+        .chunks_exact(RELATION_FEATURES)
+        .flat_map(|f| [f[0], f[1], f[2], f[3], f[4], f[0].abs(), f[1].abs()])
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -89,6 +108,25 @@ mod tests {
         for (got, want) in ba.iter().zip([1.0, 1.0, 0.0, -1.0, 2f32.sqrt()]) {
             assert!((got - want).abs() < 1e-6, "{ba:?}");
         }
+    }
+
+    #[test]
+    fn value_features_add_the_distances_along_each_axis() {
+        // The pair (a, b) of the test above: b 1 ahead of a and 1 to its right.
+        let a = TokenPose::new(0.0, 0.0, 0.0, 2.0);
+        let b = TokenPose::new(1.0, 1.0, -1.0, 0.0);
+        let f = value_features(&[a, b]);
+        assert_eq!(f.len(), 4 * RELATION_VALUE_FEATURES);
+        let ab = &f[RELATION_VALUE_FEATURES..2 * RELATION_VALUE_FEATURES];
+        for (got, want) in ab.iter().zip([1.0, -1.0, 0.0, 1.0, 2f32.sqrt(), 1.0, 1.0]) {
+            assert!((got - want).abs() < 1e-6, "{ab:?}");
+        }
+        // A piece 0.3 to either side of a reads the same distance, the opposite sign.
+        let left = value_features(&[TokenPose::new(0.0, 0.0, 1.0, 0.0), TokenPose::new(0.0, 0.3, 1.0, 0.0)]);
+        let right = value_features(&[TokenPose::new(0.0, 0.0, 1.0, 0.0), TokenPose::new(0.0, -0.3, 1.0, 0.0)]);
+        let (l, r) = (&left[RELATION_VALUE_FEATURES..], &right[RELATION_VALUE_FEATURES..]);
+        assert!((l[1] + r[1]).abs() < 1e-6 && (l[1] - 0.3).abs() < 1e-6);
+        assert!((l[6] - r[6]).abs() < 1e-6 && (l[6] - 0.3).abs() < 1e-6);
     }
 
     #[test]

@@ -136,15 +136,17 @@ fn generate_cli(input: &Path, out: &Path, model: &Path, extra: &[&str]) -> std::
 }
 
 #[test]
-fn a_model_with_slot_roles_world_features_and_the_relation_loss_trains_loads_and_generates() {
+fn a_model_with_slot_roles_world_features_relation_values_and_the_relation_loss_trains_loads_and_generates() {
     let dir = tempfile::tempdir().unwrap();
     let data = dataset(dir.path(), RoomType::Bedroom);
     let model = dir.path().join("model");
-    let flags = ["--slot-roles", "true", "--world-features", "true", "--relation-loss", "1"];
+    let flags =
+        ["--slot-roles", "true", "--world-features", "true", "--relation-values", "true", "--relation-loss", "1"];
     let o = train_cli_with(&data, &model, &flags);
     assert!(o.status.success(), "{}", stderr(&o));
     let meta = Checkpoint::load(&model).unwrap().meta;
     assert!(meta.model.slot_roles && meta.model.world_features, "recorded in config.json");
+    assert!(meta.model.relation_values, "recorded in config.json");
     let out = dir.path().join("out");
     let input = root().join("scenes/examples/bedroom_rect.json");
     let o = generate_cli(&input, &out, &model, &[]);

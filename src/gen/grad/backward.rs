@@ -3,6 +3,7 @@
 
 use super::forward::{PointTape, Tape};
 use super::ops::{self, Parts, PartsGrad};
+use super::relation_values;
 use super::{ChunkInputs, GradNet};
 use crate::generator::matmul::LinearAt;
 
@@ -53,7 +54,20 @@ pub(super) fn run(net: &GradNet, p: &[f32], tape: &Tape, inp: &ChunkInputs, tota
         let mut dattended = vec![0f32; rows * d];
         layers.proj.backward(p, g, &bt.attended, &dattn, Some(&mut dattended));
         let dbias = net.relation.as_ref().map(|_| &mut dbias[..]);
-        let dqkv = ops::attention_backward(&bt.qkv, &bt.probs, &cond.items, cfg.heads, d, &dattended, dbias);
+        let dprobs = layers.relation_values.as_ref().map(|layer| {
+            let (weighted, pairs) = (&bt.weighted_relations, &step.relation_values_in);
+            relation_values::backward(p, g, layer, weighted, pairs, &cond.items, cfg.heads, &dattended)
+        });
+        let dqkv = ops::attention_backward(
+            &bt.qkv,
+            &bt.probs,
+            &cond.items,
+            cfg.heads,
+            d,
+            &dattended,
+            dbias,
+            dprobs.as_deref(),
+        );
         let mut dm1 = vec![0f32; rows * d];
         layers.qkv.backward(p, g, &bt.m1, &dqkv, Some(&mut dm1));
         let du1 = ops::modulate_backward(&bt.u1, m, &mut dm, 0, row_item, &dm1);

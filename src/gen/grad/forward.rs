@@ -10,6 +10,7 @@
 //! contacts), and `row_item[r]` is the item of row r.
 
 use super::ops::{self, Parts};
+use super::relation_values;
 use super::{ChunkInputs, ConditionInputs, GradNet};
 use crate::generator::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES};
 use crate::generator::matmul::LinearAt;
@@ -52,7 +53,10 @@ pub(super) struct BlockTape {
     pub(super) m1: Vec<f32>,
     pub(super) qkv: Vec<f32>,
     pub(super) probs: Vec<Vec<f32>>,
+    /// The attention's output (with relation values: theirs added).
     pub(super) attended: Vec<f32>,
+    /// With relation values: the relations weighed by each (item, head)'s attention weights.
+    pub(super) weighted_relations: Vec<Vec<f32>>,
     pub(super) attention_out: Vec<f32>,
     pub(super) u2: Vec<f32>,
     pub(super) rstd2: Vec<f32>,
@@ -195,6 +199,8 @@ pub(super) struct StepTape {
     pub(super) relation_pre: Vec<f32>,
     pub(super) relation_act: Vec<f32>,
     pub(super) relation_bias: Vec<Vec<f32>>,
+    /// With relation values: every item's pairs' value features (n × n × F, its rows in order).
+    pub(super) relation_values_in: Vec<Vec<f32>>,
     /// With wall features: every object row's ([`walls::slot_features`]).
     pub(super) wall_in: Vec<f32>,
     /// With Fourier features: every object row's ([`fourier::slot_features`]).
@@ -249,6 +255,10 @@ impl StepTape {
             None => Default::default(),
         };
         let bias = net.relation.as_ref().map(|_| &relation_bias[..]);
+        let relation_values_in = match cfg.relation_values {
+            true => item_pair_features(net, cond, noisy, relations::value_features),
+            false => Vec::new(),
+        };
 
         let mut h = vec![0f32; row_item.len() * d];
         net.input.forward(p, noisy, &mut h[..objects * d]);
@@ -299,7 +309,19 @@ impl StepTape {
             let (u1, rstd1) = ops::layer_norm(&h, d);
             let m1 = ops::modulate(&u1, m, 0, row_item);
             let qkv = layers.qkv.map(p, &m1);
-            let (attended, probs) = ops::attention(&qkv, &cond.items, cfg.heads, d, bias);
+            let (mut attended, probs) = ops::attention(&qkv, &cond.items, cfg.heads, d, bias);
+            let weighted_relations = match &layers.relation_values {
+                Some(layer) => relation_values::forward(
+                    p,
+                    layer,
+                    &mut attended,
+                    &probs,
+                    &relation_values_in,
+                    &cond.items,
+                    cfg.heads,
+                ),
+                None => Vec::new(),
+            };
             let attention_out = layers.proj.map(p, &attended);
             ops::add_gated(&mut h, &attention_out, m, 2, row_item);
             let (u2, rstd2) = ops::layer_norm(&h, d);
@@ -315,6 +337,7 @@ impl StepTape {
                 qkv,
                 probs,
                 attended,
+                weighted_relations,
                 attention_out,
                 u2,
                 rstd2,
@@ -339,6 +362,7 @@ impl StepTape {
             relation_pre,
             relation_act,
             relation_bias,
+            relation_values_in,
             wall_in,
             fourier_in,
             gap_in,
@@ -380,6 +404,33 @@ fn slot_features(
         .collect()
 }
 
+/// Every item's features of its ordered pairs of rows (in `cond.items` order), computed on the
+/// host from the rows' poses by `of_poses`.
+fn item_pair_features(
+    net: &GradNet,
+    cond: &ConditionTape,
+    noisy: &[f32],
+    of_poses: fn(&[relations::TokenPose]) -> Vec<f32>,
+) -> Vec<Vec<f32>> {
+    let cfg = &net.cfg;
+    let (k, per_item) = (cfg.max_contacts, cfg.slots() * cfg.token_dim());
+    cond.items
+        .iter()
+        .enumerate()
+        .map(|(item, rows)| {
+            let poses = relations::poses(
+                cfg,
+                &noisy[item * per_item..(item + 1) * per_item],
+                &cond.contacts[item * k * CONTACT_FEATURES..(item + 1) * k * CONTACT_FEATURES],
+                &cond.mask[item * k..(item + 1) * k],
+                false,
+            );
+            debug_assert_eq!(poses.len(), rows.len());
+            of_poses(&poses)
+        })
+        .collect()
+}
+
 /// The relation bias of a chunk: every item's pair features (its rows in `cond.items` order),
 /// the MLP over all pairs at once, and the bias regrouped per item and head.
 fn relation_bias(
@@ -389,24 +440,11 @@ fn relation_bias(
     cond: &ConditionTape,
     noisy: &[f32],
 ) -> (Vec<f32>, Vec<f32>, Vec<f32>, Vec<Vec<f32>>) {
-    let cfg = &net.cfg;
-    let (k, per_item) = (cfg.max_contacts, cfg.slots() * cfg.token_dim());
-    let mut features = Vec::new();
-    for (item, rows) in cond.items.iter().enumerate() {
-        let poses = relations::poses(
-            cfg,
-            &noisy[item * per_item..(item + 1) * per_item],
-            &cond.contacts[item * k * CONTACT_FEATURES..(item + 1) * k * CONTACT_FEATURES],
-            &cond.mask[item * k..(item + 1) * k],
-            false,
-        );
-        debug_assert_eq!(poses.len(), rows.len());
-        features.extend(relations::pair_features(&poses));
-    }
+    let features = item_pair_features(net, cond, noisy, relations::pair_features).concat();
     let pre = layers[0].map(p, &features);
     let act = ops::silu(&pre);
     let out = layers[1].map(p, &act);
-    let heads = cfg.heads;
+    let heads = net.cfg.heads;
     let mut bias = Vec::with_capacity(cond.items.len() * heads);
     let mut at = 0;
     for rows in &cond.items {

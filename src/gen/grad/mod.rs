@@ -17,13 +17,14 @@
 mod backward;
 mod forward;
 mod ops;
+mod relation_values;
 
 use super::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES, RELATION_HIDDEN};
 use super::dataset::{NoisyBatch, RelationPair};
 use super::flat::ParamLayout;
 use super::gaps::GAP_FEATURES;
 use super::matmul::LinearAt;
-use super::relations::RELATION_FEATURES;
+use super::relations::{RELATION_FEATURES, RELATION_VALUE_FEATURES};
 use super::walls::WALL_FEATURES;
 use super::{GenError, ModelConfig};
 use crate::scene::RoomType;
@@ -41,6 +42,8 @@ struct BlockAt {
     proj: LinearAt,
     fc1: LinearAt,
     fc2: LinearAt,
+    /// With relation values ([`relation_values`]).
+    relation_values: Option<LinearAt>,
 }
 
 /// The denoiser as layers over a flat parameter vector.
@@ -210,6 +213,10 @@ impl GradNet {
                     proj: linear(&name("proj"), d, d)?,
                     fc1: linear(&name("fc1"), d, cfg.mlp_ratio * d)?,
                     fc2: linear(&name("fc2"), cfg.mlp_ratio * d, d)?,
+                    relation_values: match cfg.relation_values {
+                        true => Some(linear(&name("relation_values"), RELATION_VALUE_FEATURES, d)?),
+                        false => None,
+                    },
                 })
             })
             .collect::<Result<_, GenError>>()?;

@@ -260,7 +260,10 @@ pub(super) fn attention(
 }
 
 /// Backward of [`attention`]: the gradient of `qkv` for the output gradient `dout`; when `dbias` is
-/// given (laid out like the bias), the scores' gradient is added into it.
+/// given (laid out like the bias), the scores' gradient is added into it. `dprobs`, when given
+/// (laid out like `probs`), is a gradient of the softmax weights from elsewhere (the relation
+/// values), added to the one through the values.
+#[allow(clippy::too_many_arguments)]
 pub(super) fn attention_backward(
     qkv: &[f32],
     probs: &[Vec<f32>],
@@ -269,6 +272,7 @@ pub(super) fn attention_backward(
     d: usize,
     dout: &[f32],
     mut dbias: Option<&mut [Vec<f32>]>,
+    dprobs: Option<&[Vec<f32>]>,
 ) -> Vec<f32> {
     let dh = d / heads;
     let scale = 1.0 / (dh as f32).sqrt();
@@ -288,6 +292,10 @@ pub(super) fn attention_backward(
                     let v = &qkv[at(rj, 2)..][..dh];
                     dp.push(dot(dout_i, v));
                     dqkv[at(rj, 2)..][..dh].iter_mut().zip(dout_i).for_each(|(g, o)| *g += w * o);
+                }
+                if let Some(dprobs) = dprobs {
+                    let extra = &dprobs[item * heads + head][i * n..(i + 1) * n];
+                    dp.iter_mut().zip(extra).for_each(|(g, e)| *g += e);
                 }
                 // dS_ij = P_ij (dP_ij − Σ_k P_ik dP_ik), then through S = q·k · scale.
                 let inner = dot(pi, &dp);
@@ -361,7 +369,7 @@ mod tests {
                 probs.iter().all(|p| p.chunks(p.len().isqrt()).all(|row| (row.iter().sum::<f32>() - 1.0).abs() < 1e-6))
             );
             let mut dbias: Vec<Vec<f32>> = bias.iter().flat_map(|b| b.iter().map(|m| vec![0.0; m.len()])).collect();
-            let grad = attention_backward(&qkv, &probs, &items, 2, 4, &r, bias.map(|_| &mut dbias[..]));
+            let grad = attention_backward(&qkv, &probs, &items, 2, 4, &r, bias.map(|_| &mut dbias[..]), None);
             for (i, g) in grad.iter().enumerate() {
                 let n = numeric(|q| loss(&attention(q, &items, 2, 4, bias).0, &r), &qkv, i);
                 assert!((n - *g as f64).abs() < 2e-3, "{i}: {n} vs {g}");

@@ -86,8 +86,9 @@ fn gradients_equal_candles_at_initialisation() {
 #[test]
 fn gradients_equal_candles_with_anchored_slots_relations_self_conditioning_rooms_and_every_weight_set() {
     // Every parameter random (the zero-initialised modulations and outputs too), so every path —
-    // the anchored slots' box embedding, the relation bias, the self-conditioning estimate's
-    // embedding, the Fourier and gap features', the slot roles', the world features' and the room token included —
+    // the anchored slots' box embedding, the relation bias and values, the self-conditioning
+    // estimate's embedding, the Fourier and gap features', the slot roles', the world features'
+    // and the room token included —
     // carries a gradient.
     let checkpoint = shipped_model(RoomType::Living).unwrap();
     let cfg = ModelConfig {
@@ -99,6 +100,7 @@ fn gradients_equal_candles_with_anchored_slots_relations_self_conditioning_rooms
         gap_bounds: Some(checkpoint.meta.bounds.clone()),
         slot_roles: true,
         world_features: true,
+        relation_values: true,
         ..ModelConfig::tiny(RoomType::Living)
     };
     assert!(cfg.anchor_scale > 0.0);
@@ -126,6 +128,9 @@ fn gradients_equal_candles_with_anchored_slots_relations_self_conditioning_rooms
     assert!(grads.contains_key("estimate.weight") && grads.contains_key("fourier.weight"));
     assert!(grads.contains_key("gaps.weight") && grads.contains_key("roles.weight"));
     assert!(grads.contains_key("world.weight"));
+    assert!(
+        grads.contains_key("blocks.1.relation_values.weight") && grads.contains_key("blocks.0.relation_values.bias")
+    );
     // Living and dining rooms in one batch: both rows of the room table learn, the bedroom's not.
     let (room, _) = layout.find("room").unwrap();
     let net = GradNet::new(&cfg, &layout).unwrap();
