@@ -117,6 +117,11 @@ pub struct GuidanceConfig {
     /// slots have such pieces.
     #[serde(default = "GuidanceConfig::default_anchored_mobility")]
     pub anchored_mobility: f64,
+    /// Share of its step a piece's width, depth and height take (1 = as its centre and yaw, 0 =
+    /// the sizes the model drew are kept). Guided sizes shrink where the terms push pieces apart:
+    /// a piece smaller by a centimetre overlaps less, just as one moved by a centimetre does.
+    #[serde(default = "GuidanceConfig::default_size_mobility")]
+    pub size_mobility: f64,
     /// Weight of J_q (ours): pieces turned from the walls' directions, Σ (1 − cos 4Δ) / 4 over
     /// pieces, Δ their yaw less the longest wall's (0 = off; [`squareness`]).
     #[serde(default)]
@@ -177,6 +182,7 @@ impl GuidanceConfig {
             until_step: 20,
             every: 1,
             anchored_mobility: 1.0,
+            size_mobility: 1.0,
             square: 1.0,
             phys: 0.0,
             phys_until: 20,
@@ -230,6 +236,10 @@ impl GuidanceConfig {
         1
     }
 
+    fn default_size_mobility() -> f64 {
+        Self::shade().size_mobility
+    }
+
     fn default_anchored_mobility() -> f64 {
         Self::shade().anchored_mobility
     }
@@ -281,7 +291,8 @@ impl GuidanceConfig {
     pub const MAX_ITERATIONS: usize = 1000;
 
     /// Why the configuration cannot guide, if it cannot: a weight, γ, `phys` or
-    /// `against_wall_reach` that is negative or not finite, `anchored_mobility` outside 0..1,
+    /// `against_wall_reach` that is negative or not finite, `anchored_mobility` or
+    /// `size_mobility` outside 0..1,
     /// `max_step` not a positive distance, `bound_margin`, `contact_margin`, `object_gap` or
     /// `real_sizes` not a distance ≥ 0,
     /// `every` 0, or `iterations` above [`MAX_ITERATIONS`](Self::MAX_ITERATIONS).
@@ -303,8 +314,10 @@ impl GuidanceConfig {
         if let Some((name, w)) = weights.iter().find(|(_, w)| !(w.is_finite() && *w >= 0.0)) {
             return Some(format!("{name}: must be a non-negative number, not {w}"));
         }
-        if !(0.0..=1.0).contains(&self.anchored_mobility) {
-            return Some(format!("anchored_mobility: must be within 0..1, not {}", self.anchored_mobility));
+        for (name, share) in [("anchored_mobility", self.anchored_mobility), ("size_mobility", self.size_mobility)] {
+            if !(0.0..=1.0).contains(&share) {
+                return Some(format!("{name}: must be within 0..1, not {share}"));
+            }
         }
         if let Some(step) = self.max_step.filter(|s| !(s.is_finite() && *s > 0.0)) {
             return Some(format!("max_step: must be a positive distance in metres, not {step}"));
@@ -855,7 +868,9 @@ fn guide_item(
     for ((held_in, piece), g) in decoded.iter().zip(&grads) {
         let slot = held_in[0];
         let t = &mut tokens[slot * dim..(slot + 1) * dim];
-        let step = token_gradient(t, g, bounds);
+        let mut step = token_gradient(t, g, bounds);
+        // The token's sizes are its attributes 3..6 (width, depth, height).
+        step[3..6].iter_mut().for_each(|s| *s *= cfg.size_mobility);
         let mut scale = if slot < anchored { cfg.scale * cfg.anchored_mobility } else { cfg.scale };
         if let Some(cap) = cfg.max_step {
             scale *= capped(&step, scale, cap, bounds);
@@ -1404,6 +1419,32 @@ mod batch_tests {
         assert!(out[0] > tok[0] + 0.01, "the piece moved out of the wall: {} → {}", tok[0], out[0]);
         assert_eq!(out[..CLASS_OFFSET], out[dim..dim + CLASS_OFFSET], "the copy took the piece's place");
         assert_eq!(tokens::decode(&out, masks.window.center, 2.6, &bounds, &cfg).len(), 1, "still one piece");
+    }
+
+    #[test]
+    fn size_mobility_zero_moves_a_piece_out_of_the_wall_at_the_size_it_was_drawn() {
+        let (scene, cfg, bounds, _, tok) = piece_through_the_wall();
+        let dim = cfg.token_dim();
+        let x0 = Tensor::from_vec(tok.clone(), (1, cfg.slots(), dim), &candle_core::Device::Cpu).unwrap();
+        let walls = |size_mobility| GuidanceConfig {
+            motion: 0.0,
+            object: 0.0,
+            body: 0.0,
+            size_mobility,
+            ..GuidanceConfig::all()
+        };
+        let guided = |size_mobility| {
+            let mut g = SpatialGuidance::new(walls(size_mobility), &cfg, &bounds, &[&scene]);
+            g.guide(&x0, 0).unwrap().flatten_all().unwrap().to_vec1::<f32>().unwrap()
+        };
+        // As it was: the wall term moves the piece and shrinks it.
+        let (free, fixed) = (guided(1.0), guided(0.0));
+        assert!(free[0] > tok[0] + 0.01 && free[3..6] != tok[3..6], "{:?} → {:?}", &tok[..8], &free[..8]);
+        // Sizes held: the piece moves out all the same, its sizes the model's to the bit.
+        assert!(fixed[0] > tok[0] + 0.01, "moved: {} → {}", tok[0], fixed[0]);
+        assert_eq!(fixed[3..6], tok[3..6]);
+        let bad = GuidanceConfig { size_mobility: 1.5, ..GuidanceConfig::all() };
+        assert!(bad.problem().unwrap().starts_with("size_mobility:"));
     }
 
     #[test]
