@@ -16,6 +16,7 @@
 //! ```
 
 use shade_sim::data::Rng;
+use shade_sim::eval::pearson;
 use shade_sim::generator::tokens::slot_class;
 use shade_sim::generator::{Checkpoint, FastDenoiser, HostBatch, Schedule, anchors, load_split};
 use shade_sim::scene::Category;
@@ -29,15 +30,6 @@ fn percentile(values: &mut [f64], q: f64) -> f64 {
     }
     values.sort_by(f64::total_cmp);
     values[((values.len() - 1) as f64 * q).round() as usize]
-}
-
-/// Pearson's r of `a` against `b`.
-fn pearson(a: &[f64], b: &[f64]) -> f64 {
-    let n = a.len().max(1) as f64;
-    let (ma, mb) = (a.iter().sum::<f64>() / n, b.iter().sum::<f64>() / n);
-    let cov: f64 = a.iter().zip(b).map(|(x, y)| (x - ma) * (y - mb)).sum();
-    let (va, vb): (f64, f64) = (a.iter().map(|x| (x - ma).powi(2)).sum(), b.iter().map(|y| (y - mb).powi(2)).sum());
-    cov / (va * vb).sqrt().max(1e-12)
 }
 
 /// A slot in metres: centre (x, y), width, yaw.

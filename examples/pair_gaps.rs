@@ -8,6 +8,7 @@
 //! Run: `cargo run --release --example pair_gaps -- DIR…` (a dataset's split, or `generate`'s
 //! output for it).
 
+use shade_sim::eval::pearson;
 use shade_sim::scene::{Category, Object, Scene};
 
 /// `o`'s centre in the frame of `of` (x along its width, y along its depth).
@@ -28,14 +29,6 @@ fn percentiles(mut v: Vec<f64>) -> String {
     v.sort_by(f64::total_cmp);
     let at = |q: f64| v[((v.len() - 1) as f64 * q).round() as usize];
     format!("{:+.3} / {:+.3} / {:+.3} / {:+.3} / {:+.3}", at(0.1), at(0.25), at(0.5), at(0.75), at(0.9))
-}
-
-fn pearson(a: &[f64], b: &[f64]) -> f64 {
-    let n = a.len().max(1) as f64;
-    let (ma, mb) = (a.iter().sum::<f64>() / n, b.iter().sum::<f64>() / n);
-    let cov: f64 = a.iter().zip(b).map(|(x, y)| (x - ma) * (y - mb)).sum();
-    let (va, vb): (f64, f64) = (a.iter().map(|x| (x - ma).powi(2)).sum(), b.iter().map(|y| (y - mb).powi(2)).sum());
-    cov / (va * vb).sqrt().max(1e-12)
 }
 
 fn main() -> anyhow::Result<()> {

@@ -4,6 +4,7 @@
 //! scene sets with the physics rates.
 
 mod ckl_floor;
+mod correlation;
 mod counts;
 mod layout_metrics;
 mod sca;
@@ -14,6 +15,7 @@ pub use crate::furniture::beyond_real;
 pub use crate::measure::{FurnitureField, SURFACE_POINTS, human_penetration, scene_penetration};
 pub use crate::measure::{contact_iou, scene_contact_iou};
 pub use ckl_floor::{CklFloor, ckl_floor, contact_floor, contact_pieces};
+pub use correlation::pearson;
 pub use counts::{CountDistribution, CountReport, UnseenCount, count_report};
 pub use layout_metrics::{
     CategoryShare, LayoutCounts, category_frequencies, category_kl, category_shares, frequencies_of,
