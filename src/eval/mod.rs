@@ -15,11 +15,11 @@ pub use crate::furniture::beyond_real;
 pub use crate::measure::{FurnitureField, SURFACE_POINTS, human_penetration, scene_penetration};
 pub use crate::measure::{contact_iou, scene_contact_iou};
 pub use ckl_floor::{CklFloor, ckl_floor, contact_floor, contact_pieces};
-pub use correlation::pearson;
+pub use correlation::{pearson, rank_auc};
 pub use counts::{CountDistribution, CountReport, UnseenCount, count_report};
 pub use layout_metrics::{
     CategoryShare, LayoutCounts, category_frequencies, category_kl, category_shares, frequencies_of,
 };
-pub use sca::{SCA_MIN_LAYOUTS, Sca, ScaConfig, layout_features, sca};
+pub use sca::{SCA_MIN_LAYOUTS, Sca, ScaConfig, layout_feature_names, layout_features, sca};
 pub use sizes::{SizeReport, UnrealSize, size_report};
 pub use table::{EvalRow, PhysicsRates, evaluate};

@@ -15,7 +15,7 @@
 
 use crate::data::Rng;
 use crate::geom::{OBox, Polygon, intersection_volume};
-use crate::scene::{Group, Scene};
+use crate::scene::{Group, RoomType, Scene};
 use serde::{Deserialize, Serialize};
 
 /// SCA's settings; the defaults are what `shade-sim eval` uses.
@@ -117,6 +117,24 @@ pub fn layout_features(scene: &Scene, resolution: f64, share_resolution: f64) ->
     out.push(polygon.area());
     out.push(scene.objects.len() as f64);
     out.into_iter().map(|v| v as f32).collect()
+}
+
+/// The names of [`layout_features`]' values, in their order (`cabinet.back.min`,
+/// `count.nightstand`, `area`, …), for diagnostics that say which feature tells two sets apart.
+pub fn layout_feature_names(room_type: RoomType) -> Vec<String> {
+    const NAMES: [&str; DESCRIPTORS] =
+        ["width", "depth", "height", "wall_gap", "back", "turned", "nearest", "shared", "from_centre"];
+    let mut out = Vec::new();
+    for g in GROUPS {
+        let group = format!("{g:?}").to_lowercase();
+        out.push(format!("{group}.count"));
+        for name in NAMES {
+            out.extend(["mean", "min", "max"].map(|pool| format!("{group}.{name}.{pool}")));
+        }
+    }
+    out.extend(room_type.categories().iter().map(|c| format!("count.{}", c.name())));
+    out.extend(["area".to_string(), "pieces".to_string()]);
+    out
 }
 
 /// What a layout shows of piece `i` (its box among `boxes`) in a floor plan whose longest wall
@@ -410,6 +428,19 @@ mod tests {
         let coarse = layout_features(&scene, 0.25, 0.1);
         assert_eq!(coarse[g * stride + 1], 1.25);
         assert!((coarse[g * stride + 1 + 3 * 7] - 0.4).abs() < 1e-6, "0.375 of its volume shared, seen to 0.1");
+    }
+
+    #[test]
+    fn every_feature_has_its_name() {
+        let scene = living_rooms(2, 1).remove(0);
+        let names = layout_feature_names(RoomType::Living);
+        assert_eq!(names.len(), layout_features(&scene, 0.05, 0.05).len());
+        let stride = 1 + 3 * DESCRIPTORS;
+        let table = GROUPS.iter().position(|g| *g == Group::Table).unwrap();
+        assert_eq!(names[table * stride], "table.count");
+        assert_eq!(names[table * stride + 1 + 3 * 4 + 1], "table.back.min");
+        assert_eq!(names[GROUPS.len() * stride], format!("count.{}", RoomType::Living.categories()[0].name()));
+        assert_eq!(names.last().map(String::as_str), Some("pieces"));
     }
 
     #[test]
