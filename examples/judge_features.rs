@@ -12,10 +12,7 @@ use shade_sim::scene::Scene;
 use std::path::Path;
 
 fn scenes(dir: &Path) -> anyhow::Result<Vec<Scene>> {
-    let mut files: Vec<_> = std::fs::read_dir(dir)?.filter_map(|e| e.ok().map(|e| e.path())).collect();
-    files.retain(|f| f.extension().is_some_and(|e| e == "json"));
-    files.sort();
-    files.iter().map(|f| Ok(Scene::load(f)?)).collect()
+    Ok(Scene::files_in(dir)?.iter().map(Scene::load).collect::<Result<_, _>>()?)
 }
 
 fn median(mut v: Vec<f64>) -> f64 {

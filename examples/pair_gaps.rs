@@ -34,10 +34,7 @@ fn percentiles(mut v: Vec<f64>) -> String {
 fn main() -> anyhow::Result<()> {
     let (mut side, mut back, mut from_centre, mut half_width, mut chairs) = (vec![], vec![], vec![], vec![], vec![]);
     for dir in std::env::args().skip(1) {
-        let mut files: Vec<_> = std::fs::read_dir(&dir)?.filter_map(|e| e.ok().map(|e| e.path())).collect();
-        files.retain(|f| f.extension().is_some_and(|e| e == "json"));
-        files.sort();
-        for file in files {
+        for file in Scene::files_in(std::path::Path::new(&dir))? {
             let scene = Scene::load(&file)?;
             let of = |pick: fn(Category) -> bool| -> Vec<&Object> {
                 scene.objects.iter().filter(|o| pick(o.category)).collect()

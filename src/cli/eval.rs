@@ -29,7 +29,7 @@ use shade_sim::eval::{
     CklFloor, CountDistribution, EvalRow, PhysicsRates, ScaConfig, category_frequencies, ckl_floor, contact_floor,
     count_report, evaluate, sca, size_report,
 };
-use shade_sim::scene::{Action, RoomType, Scene};
+use shade_sim::scene::{Action, RoomType, Scene, SceneError};
 use shade_sim::sim::{CheckConfig, ViolationKind, check_scene};
 use std::path::{Path, PathBuf};
 
@@ -64,20 +64,10 @@ pub struct EvalArgs {
 /// The scene files under `dir` (recursively, not stats.json / calibration.json), sorted; an error
 /// when there are none. Shared by `eval`, `generate` and `demo`.
 pub fn scene_files(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
-    let mut out = Vec::new();
-    let mut stack = vec![dir.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).with_context(|| format!("{}: cannot read folder", d.display()))? {
-            let p = e?.path();
-            let meta = p.file_name().is_some_and(|n| n == "stats.json" || n == "calibration.json");
-            if p.is_dir() {
-                stack.push(p);
-            } else if p.extension().is_some_and(|x| x == "json") && !meta {
-                out.push(p);
-            }
-        }
-    }
-    out.sort();
+    let out = Scene::files_in(dir).map_err(|e| match e {
+        SceneError::Io { file, error } => anyhow::anyhow!("{}: cannot read folder: {error}", file.display()),
+        other => other.into(),
+    })?;
     anyhow::ensure!(!out.is_empty(), "{}: no scene files", dir.display());
     Ok(out)
 }

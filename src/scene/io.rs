@@ -21,6 +21,30 @@ impl Scene {
         Scene::from_json(&text, file)
     }
 
+    /// The scene files under `dir`, recursively and sorted: every `.json` but a dataset's
+    /// `stats.json` and `calibration.json`. Reads nothing inside them.
+    ///
+    /// # Errors
+    /// [`SceneError::Io`] naming the folder that cannot be read.
+    pub fn files_in(dir: &Path) -> Result<Vec<PathBuf>, SceneError> {
+        let mut out = Vec::new();
+        let mut stack = vec![dir.to_path_buf()];
+        while let Some(d) = stack.pop() {
+            let io = |error| SceneError::Io { file: d.clone(), error };
+            for entry in std::fs::read_dir(&d).map_err(io)? {
+                let p = entry.map_err(io)?.path();
+                let meta = p.file_name().is_some_and(|n| n == "stats.json" || n == "calibration.json");
+                if p.is_dir() {
+                    stack.push(p);
+                } else if p.extension().is_some_and(|x| x == "json") && !meta {
+                    out.push(p);
+                }
+            }
+        }
+        out.sort();
+        Ok(out)
+    }
+
     /// Parses and validates scene JSON; `origin` names the source in errors.
     ///
     /// # Errors
@@ -150,5 +174,27 @@ fn is_flat(v: &Value) -> bool {
         Value::Number(_) => true,
         Value::Array(items) => items.iter().all(|x| matches!(x, Value::Number(_))),
         _ => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scene_files_are_found_below_a_folder_in_order_without_a_datasets_own_files() {
+        let dir = tempfile::tempdir().unwrap();
+        let root = dir.path();
+        std::fs::create_dir(root.join("val")).unwrap();
+        for name in ["b.json", "a.json", "stats.json", "calibration.json", "notes.txt", "val/c.json"] {
+            std::fs::write(root.join(name), "{}").unwrap();
+        }
+        let found = Scene::files_in(root).unwrap();
+        assert_eq!(found, vec![root.join("a.json"), root.join("b.json"), root.join("val/c.json")]);
+        let missing = root.join("none");
+        match Scene::files_in(&missing) {
+            Err(SceneError::Io { file, .. }) => assert_eq!(file, missing),
+            other => panic!("{other:?}"),
+        }
     }
 }
