@@ -16,7 +16,9 @@
 //! share of the row's rooms with a count no room of the training data has — the dataset's `train`
 //! split, else the reference itself, and every split of each `--extra-data` dataset (a model's
 //! second draw of training rooms); `counts` in JSON, with the offending category counts), `unreal`, the share of rooms with a piece further than 15 cm outside
-//! its category's real sizes (`sizes` in JSON, by category and axis), and SCA (`eval::sca`: the held-out accuracy of a small classifier
+//! its category's real sizes (`sizes` in JSON, by category and axis), `odd size`, the share of
+//! pieces with a size the procedural data never draws for their category (`odd_pieces` in JSON;
+//! 0 for the data), and SCA (`eval::sca`: the held-out accuracy of a small classifier
 //! trained to tell the row's layouts from the reference's; 0.5 is indistinguishable). `--no-sca`
 //! skips SCA.
 
@@ -249,7 +251,7 @@ fn ckl_floors(
 fn table(rows: &[EvalRow]) -> String {
     let ratio = rows.iter().any(|r| r.layout_ratio.is_some());
     let mut t = String::from(
-        "method               scenes  contact IoU↑  Col_mot↓  R_out↓  Col_obj↓  CKL↓    count KL↓  unseen↓  unreal↓  SCA→0.5  E_pen↓  pen. scenes↓  unsupported↓  unstable↓  violating↓",
+        "method               scenes  contact IoU↑  Col_mot↓  R_out↓  Col_obj↓  CKL↓    count KL↓  unseen↓  unreal↓  odd size↓  SCA→0.5  E_pen↓  pen. scenes↓  unsupported↓  unstable↓  violating↓",
     );
     t.push_str(if ratio { "  layout÷base↓\n" } else { "\n" });
     for r in rows {
@@ -268,9 +270,12 @@ fn table(rows: &[EvalRow]) -> String {
             .as_ref()
             .map_or(("-".into(), "-".into()), |c| (format!("{:.3}", c.count_kl), format!("{:.3}", c.unseen_rooms)));
         let sca = r.sca.as_ref().map_or("-".into(), |s| format!("{:.3}", s.accuracy));
-        let unreal = r.sizes.as_ref().map_or("-".into(), |s| format!("{:.3}", s.unreal_rooms));
+        let (unreal, odd) = r
+            .sizes
+            .as_ref()
+            .map_or(("-".into(), "-".into()), |s| (format!("{:.3}", s.unreal_rooms), format!("{:.3}", s.odd_pieces)));
         t.push_str(&format!(
-            "{:<20} {:>6}  {:>12.3}  {:>8.3}  {:>6.3}  {:>8.3}  {:>6.3}  {count_kl:>9}  {unseen:>7}  {unreal:>7}  {sca:>7}  {:>6.2}{p}{q}\n",
+            "{:<20} {:>6}  {:>12.3}  {:>8.3}  {:>6.3}  {:>8.3}  {:>6.3}  {count_kl:>9}  {unseen:>7}  {unreal:>7}  {odd:>10}  {sca:>7}  {:>6.2}{p}{q}\n",
             r.name, r.scenes, r.contact_iou, r.col_mot, r.r_out, r.col_obj, r.ckl, r.e_pen
         ));
     }

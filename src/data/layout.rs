@@ -8,7 +8,7 @@
 //! walkways at least 0.6 m wide (checked on a 10 cm grid after each group).
 
 use super::Rng;
-use crate::furniture::catalog_items;
+use crate::furniture::{SIZE_JITTER, catalog_items};
 use crate::geom::{OBox, Polygon, Wall, facing, footprint_intersection_area, intersection_volume, yaw_facing};
 use crate::scene::{Category, FloorPlan, Group, Object};
 use glam::{DVec2, DVec3};
@@ -50,7 +50,7 @@ pub fn real_size(category: Category, rng: &mut Rng) -> DVec3 {
     let items = catalog_items(category);
     let s = items[rng.index(items.len())].size;
     let j = |x: f64, r: &mut Rng, a: f64| ((x * r.uniform(1.0 - a, 1.0 + a)) * 100.0).round() / 100.0;
-    DVec3::new(j(s[0], rng, 0.07), j(s[1], rng, 0.07), j(s[2], rng, 0.04))
+    DVec3::new(j(s[0], rng, SIZE_JITTER[0]), j(s[1], rng, SIZE_JITTER[1]), j(s[2], rng, SIZE_JITTER[2]))
 }
 
 fn local_to_world(obox: &OBox, local: DVec2) -> DVec2 {

@@ -3,8 +3,14 @@
 //! category's real pieces (`furniture::size_range`, the catalog the data is drawn from). A 5 cm
 //! dining table scores well on every layout metric and passes the physics check; this is what
 //! sees it. It judges sizes only, not places.
+//!
+//! The margin is wide, and the guidance's own bound (`GuidanceConfig::real_sizes`) is as wide, so
+//! a piece the guidance resized as far as it may is not counted there. `odd_pieces` is the finer
+//! measure: the share of all pieces with a size the procedural data never draws for their category
+//! (`furniture::drawn_range`: the real range widened by the data's few per cent of jitter), 0 for
+//! the data itself.
 
-use crate::furniture::{REAL_SIZE_MARGIN, beyond_real};
+use crate::furniture::{REAL_SIZE_MARGIN, beyond_real, drawn_range};
 use crate::scene::{Category, Scene};
 use serde::{Deserialize, Serialize};
 
@@ -26,6 +32,10 @@ pub struct SizeReport {
     pub unreal_rooms: f64,
     /// The (category, axis) pairs behind it, most rooms first (ties by category, then axis).
     pub unreal: Vec<UnrealSize>,
+    /// Share of all pieces with a width, depth or height outside the sizes the data draws for
+    /// their category (`furniture::drawn_range`); 0 without pieces.
+    #[serde(default)]
+    pub odd_pieces: f64,
 }
 
 const AXES: [&str; 3] = ["width", "depth", "height"];
@@ -38,9 +48,15 @@ const DECODING_SLACK: f64 = 0.001;
 pub fn size_report(scenes: &[Scene]) -> SizeReport {
     let mut unreal: Vec<UnrealSize> = Vec::new();
     let mut odd_rooms = 0;
+    let (mut pieces, mut odd_pieces) = (0usize, 0usize);
     for s in scenes {
         let mut seen: Vec<(Category, usize)> = Vec::new();
         for o in &s.objects {
+            pieces += 1;
+            odd_pieces += usize::from((0..3).any(|axis| {
+                let (lo, hi) = drawn_range(o.category, axis);
+                o.size[axis] < lo - DECODING_SLACK || o.size[axis] > hi + DECODING_SLACK
+            }));
             for axis in 0..3 {
                 let unreal = beyond_real(o.category, axis, o.size[axis]) > REAL_SIZE_MARGIN + DECODING_SLACK;
                 if unreal && !seen.contains(&(o.category, axis)) {
@@ -57,7 +73,8 @@ pub fn size_report(scenes: &[Scene]) -> SizeReport {
         }
     }
     unreal.sort_by(|a, b| b.rooms.cmp(&a.rooms).then(a.category.cmp(&b.category)).then(a.axis.cmp(&b.axis)));
-    SizeReport { unreal_rooms: if scenes.is_empty() { 0.0 } else { odd_rooms as f64 / scenes.len() as f64 }, unreal }
+    let share = |n: usize, of: usize| if of == 0 { 0.0 } else { n as f64 / of as f64 };
+    SizeReport { unreal_rooms: share(odd_rooms, scenes.len()), unreal, odd_pieces: share(odd_pieces, pieces) }
 }
 
 #[cfg(test)]
@@ -82,5 +99,30 @@ mod tests {
         assert_eq!(r.unreal, vec![UnrealSize { category: Category::DiningTable, axis: "height".into(), rooms: 1 }]);
         assert!((beyond_real(Category::DiningTable, 2, 0.05) - (lo - 0.05)).abs() < 1e-12);
         assert_eq!(size_report(&[]).unreal_rooms, 0.0);
+        // The table at the margin's edge and the flat one have sizes the data never draws.
+        assert!((r.odd_pieces - 2.0 / 3.0).abs() < 1e-12, "{r:?}");
+        assert_eq!(size_report(&[]).odd_pieces, 0.0);
+    }
+
+    #[test]
+    fn the_sizes_the_data_draws_are_not_odd_and_just_beyond_them_are() {
+        let floor = FloorPlan { polygon: vec![[0.0, 0.0], [6.0, 0.0], [6.0, 5.0], [0.0, 5.0]], height: 2.7 };
+        let mut rng = crate::data::Rng::new(3);
+        let mut drawn = Scene::new(RoomType::Bedroom, floor.clone());
+        for i in 0..400 {
+            let category = [Category::Wardrobe, Category::Nightstand, Category::DoubleBed, Category::Cabinet][i % 4];
+            let size = crate::data::layout::real_size(category, &mut rng);
+            drawn.objects.push(Object::standing(format!("o{i}"), category, [3.0, 2.5], size.to_array()));
+        }
+        assert_eq!(size_report(std::slice::from_ref(&drawn)).odd_pieces, 0.0);
+        // A wardrobe 3 cm shallower than the shallowest the data draws.
+        let (lo, _) = drawn_range(Category::Wardrobe, 1);
+        let (wlo, _) = size_range(Category::Wardrobe, 1);
+        assert!((lo - (wlo * 0.93 - 0.005)).abs() < 1e-12);
+        let mut odd = Scene::new(RoomType::Bedroom, floor);
+        odd.objects.push(Object::standing("o0", Category::Wardrobe, [3.0, 2.5], [1.2, lo - 0.03, 2.0]));
+        odd.objects.push(Object::standing("o1", Category::Wardrobe, [1.0, 2.5], [1.2, lo + 0.03, 2.0]));
+        let r = size_report(&[odd]);
+        assert!((r.odd_pieces - 0.5).abs() < 1e-12 && r.unreal_rooms == 0.0, "{r:?}");
     }
 }

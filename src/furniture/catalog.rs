@@ -95,6 +95,19 @@ pub fn size_range(category: Category, axis: usize) -> (f64, f64) {
     if lo.is_finite() { (lo, hi) } else { (0.0, f64::INFINITY) }
 }
 
+/// The share by which the procedural dataset draws a piece's width, depth and height off its
+/// catalog item's (`data::real_size`: uniform within ±7 % and ±4 %, then to the centimetre).
+pub const SIZE_JITTER: [f64; 3] = [0.07, 0.07, 0.04];
+
+/// The sizes (m) the procedural dataset draws for `category` on `axis`: its real range
+/// ([`size_range`]) widened by [`SIZE_JITTER`] and half a centimetre of rounding. Every piece of
+/// the data lies within it; (0, ∞) for a category without real pieces.
+pub fn drawn_range(category: Category, axis: usize) -> (f64, f64) {
+    let (lo, hi) = size_range(category, axis);
+    let j = SIZE_JITTER[axis];
+    ((lo * (1.0 - j) - 0.005).max(0.0), hi * (1.0 + j) + 0.005)
+}
+
 /// How far (m) `size` lies outside `category`'s real range on `axis` (0 inside it).
 pub fn beyond_real(category: Category, axis: usize, size: f64) -> f64 {
     let (lo, hi) = size_range(category, axis);

@@ -9,6 +9,8 @@ mod catalog;
 mod template;
 mod walls;
 
-pub use catalog::{CatalogItem, REAL_SIZE_MARGIN, beyond_real, catalog_items, height_range, size_range};
+pub use catalog::{
+    CatalogItem, REAL_SIZE_MARGIN, SIZE_JITTER, beyond_real, catalog_items, drawn_range, height_range, size_range,
+};
 pub use template::{Part, PartRole, Surface, Template, template, template_of};
 pub use walls::{WALL_THICKNESS, wall_boxes};

@@ -323,6 +323,8 @@ fn eval_command_prints_table_1_rows_and_calibration_improves_them() {
     let sca = same[0].sca.as_ref().map(|s| s.accuracy);
     assert_eq!(sca, (same[0].scenes >= shade_sim::eval::SCA_MIN_LAYOUTS).then_some(0.5), "{} scenes", same[0].scenes);
     assert!(same[1].counts.as_ref().unwrap().count_kl >= 0.0);
+    // The data's pieces all have sizes the data draws, raw and calibrated.
+    assert!(same.iter().all(|r| r.sizes.as_ref().unwrap().odd_pieces == 0.0), "{:?}", same[0].sizes);
     let o = shade_sim(&[
         "eval",
         "--no-physics",
