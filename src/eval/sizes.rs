@@ -47,24 +47,23 @@ const DECODING_SLACK: f64 = 0.001;
 /// The size statistics of `scenes`.
 pub fn size_report(scenes: &[Scene]) -> SizeReport {
     let mut unreal: Vec<UnrealSize> = Vec::new();
-    let mut odd_rooms = 0;
-    let (mut pieces, mut odd_pieces) = (0usize, 0usize);
+    let (mut unreal_rooms, mut pieces, mut odd_pieces) = (0usize, 0usize, 0usize);
     for s in scenes {
         let mut seen: Vec<(Category, usize)> = Vec::new();
         for o in &s.objects {
-            pieces += 1;
-            odd_pieces += usize::from((0..3).any(|axis| {
-                let (lo, hi) = drawn_range(o.category, axis);
-                o.size[axis] < lo - DECODING_SLACK || o.size[axis] > hi + DECODING_SLACK
-            }));
+            let mut odd = false;
             for axis in 0..3 {
+                let (lo, hi) = drawn_range(o.category, axis);
+                odd |= o.size[axis] < lo - DECODING_SLACK || o.size[axis] > hi + DECODING_SLACK;
                 let unreal = beyond_real(o.category, axis, o.size[axis]) > REAL_SIZE_MARGIN + DECODING_SLACK;
                 if unreal && !seen.contains(&(o.category, axis)) {
                     seen.push((o.category, axis));
                 }
             }
+            pieces += 1;
+            odd_pieces += usize::from(odd);
         }
-        odd_rooms += usize::from(!seen.is_empty());
+        unreal_rooms += usize::from(!seen.is_empty());
         for (category, axis) in seen {
             match unreal.iter_mut().find(|u| u.category == category && u.axis == AXES[axis]) {
                 Some(u) => u.rooms += 1,
@@ -74,7 +73,7 @@ pub fn size_report(scenes: &[Scene]) -> SizeReport {
     }
     unreal.sort_by(|a, b| b.rooms.cmp(&a.rooms).then(a.category.cmp(&b.category)).then(a.axis.cmp(&b.axis)));
     let share = |n: usize, of: usize| if of == 0 { 0.0 } else { n as f64 / of as f64 };
-    SizeReport { unreal_rooms: share(odd_rooms, scenes.len()), unreal, odd_pieces: share(odd_pieces, pieces) }
+    SizeReport { unreal_rooms: share(unreal_rooms, scenes.len()), unreal, odd_pieces: share(odd_pieces, pieces) }
 }
 
 #[cfg(test)]

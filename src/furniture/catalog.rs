@@ -96,7 +96,7 @@ pub fn size_range(category: Category, axis: usize) -> (f64, f64) {
 }
 
 /// The share by which the procedural dataset draws a piece's width, depth and height off its
-/// catalog item's (`data::real_size`: uniform within ±7 % and ±4 %, then to the centimetre).
+/// catalog item's (`data::layout::real_size`: uniform within ±7 % and ±4 %, then to the centimetre).
 pub const SIZE_JITTER: [f64; 3] = [0.07, 0.07, 0.04];
 
 /// The sizes (m) the procedural dataset draws for `category` on `axis`: its real range
