@@ -3,6 +3,7 @@
 use super::output::{print_json, print_text};
 use super::{ExitStatus, GlobalArgs, RoomArg};
 use clap::Args;
+use shade_sim::data::layout::Spacing;
 use shade_sim::data::{DatasetStats, SynthConfig, synthesize};
 use shade_sim::physics::Physics;
 use shade_sim::sim::SimPhysics;
@@ -26,16 +27,28 @@ pub struct SynthArgs {
     /// placed; stats.json counts the rooms that pass and those drawn again.
     #[arg(long)]
     pub require_clean: bool,
+    /// Draw each gap the layout rules leave (a piece's back from its wall, a nightstand from its
+    /// bed, a chair from its table, …) afresh for every piece, up to this far (m) either side of
+    /// the rule's own; 0 keeps them exactly.
+    #[arg(long, default_value_t = 0.0)]
+    pub gap_spread: f64,
 }
 
 pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     anyhow::ensure!(args.scenes > 0, "--scenes: must be at least 1");
+    anyhow::ensure!(
+        args.gap_spread.is_finite() && (0.0..=0.2).contains(&args.gap_spread),
+        "--gap-spread: must be between 0 and 0.2 (m), not {}",
+        args.gap_spread
+    );
+    let spread = if args.gap_spread > 0.0 { format!(" --gap-spread {}", args.gap_spread) } else { String::new() };
     let cfg = SynthConfig {
         room: args.room.into(),
         scenes: args.scenes,
         seed: args.seed,
+        spacing: Spacing { spread: args.gap_spread },
         command: format!(
-            "shade-sim synth --room {} --scenes {} --seed {} --out {}{}",
+            "shade-sim synth --room {} --scenes {} --seed {} --out {}{}{spread}",
             args.room.name(),
             args.scenes,
             args.seed,

@@ -6,6 +6,10 @@
 //! beside; lamps hang from the ceiling. No two footprints overlap (lamps excepted, which clear every
 //! piece below them), everything stays inside the floor plan, and every piece stays reachable over
 //! walkways at least 0.6 m wide (checked on a 10 cm grid after each group).
+//!
+//! The gaps the rules leave (a piece's back from its wall, a nightstand from its bed, a chair from
+//! its table, …) are exact by default; with a [`Spacing`] spread each one is drawn afresh for every
+//! piece, as a room furnished by hand keeps them only roughly.
 
 use super::Rng;
 use crate::furniture::{SIZE_JITTER, catalog_items};
@@ -16,6 +20,9 @@ use std::collections::VecDeque;
 
 /// Gap between a wall and the back of a piece against it.
 pub const WALL_GAP: f64 = 0.05;
+/// The clearance a piece placed beside another keeps from every other footprint (m); no gap the
+/// rules leave is drawn below it.
+const BESIDE_CLEARANCE: f64 = 0.02;
 /// Half the narrowest walkway kept free.
 pub const WALKWAY_HALF: f64 = 0.3;
 const GRID: f64 = 0.1;
@@ -35,11 +42,39 @@ pub struct Placed {
     pub anchor: Option<usize>,
 }
 
+/// How exactly the rules' gaps are kept.
+///
+/// With `spread` 0 (the default) every gap is the rule's own ([`WALL_GAP`] from a wall, 4 cm
+/// between a nightstand and its bed or a chair and its table, …) and nothing is drawn for it, so
+/// the rooms are those of the exact rules draw for draw. With a spread `s`, each gap `g` is drawn
+/// uniformly from `[max(g − s, 2 cm), g + s]` for every piece (2 cm: the clearance a piece placed
+/// beside another keeps from the rest).
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
+pub struct Spacing {
+    /// Half the width of the range each gap is drawn from (m; 0 = the rules' gaps exactly).
+    pub spread: f64,
+}
+
+impl Spacing {
+    /// The rules' gaps exactly.
+    pub const EXACT: Spacing = Spacing { spread: 0.0 };
+
+    /// The gap for a rule whose own is `rule` (m): `rule` itself when exact, else a draw.
+    pub fn gap(&self, rule: f64, rng: &mut Rng) -> f64 {
+        if self.spread <= 0.0 {
+            return rule;
+        }
+        let lo = (rule - self.spread).max(BESIDE_CLEARANCE + 1e-3).min(rule);
+        rng.uniform(lo, rule + self.spread)
+    }
+}
+
 /// A room being furnished.
 #[derive(Debug, Clone)]
 pub struct Layout {
     polygon: Polygon,
     height: f64,
+    spacing: Spacing,
     /// The pieces, in placement order.
     pub placed: Vec<Placed>,
     reserved: Vec<OBox>,
@@ -58,9 +93,14 @@ fn local_to_world(obox: &OBox, local: DVec2) -> DVec2 {
 }
 
 impl Layout {
-    /// An empty room.
+    /// An empty room, furnished with the rules' gaps exactly.
     pub fn new(plan: &FloorPlan) -> Layout {
-        Layout { polygon: plan.polygon(), height: plan.height, placed: Vec::new(), reserved: Vec::new() }
+        Layout::with_spacing(plan, Spacing::EXACT)
+    }
+
+    /// An empty room whose gaps are kept as `spacing` says.
+    pub fn with_spacing(plan: &FloorPlan, spacing: Spacing) -> Layout {
+        Layout { polygon: plan.polygon(), height: plan.height, spacing, placed: Vec::new(), reserved: Vec::new() }
     }
 
     /// The floor polygon.
@@ -118,7 +158,8 @@ impl Layout {
         }
         let wall = walls[rng.weighted(&weights)];
         let t = rng.uniform(w * 0.5 + 0.02, wall.length - w * 0.5 - 0.02);
-        Some((wall.point(t, d * 0.5 + WALL_GAP), yaw_facing(wall.inward)))
+        let gap = self.spacing.gap(WALL_GAP, rng);
+        Some((wall.point(t, d * 0.5 + gap), yaw_facing(wall.inward)))
     }
 
     /// Places a piece of `size` against a wall; `None` after `tries` failures.
@@ -160,7 +201,7 @@ impl Layout {
         access_local: &[DVec2],
     ) -> Option<usize> {
         let b = OBox::new(center.extend(size.z * 0.5), size, yaw);
-        if !self.fits(&b, 0.02) {
+        if !self.fits(&b, BESIDE_CLEARANCE) {
             return None;
         }
         let access = access_local.iter().map(|&l| local_to_world(&b, l)).collect();
@@ -208,7 +249,8 @@ impl Layout {
                 break;
             }
             let ns = real_size(Category::Nightstand, rng);
-            let local = DVec2::new(s * (w * 0.5 + ns.x * 0.5 + 0.04), -d * 0.5 + ns.y * 0.5);
+            let gap = self.spacing.gap(0.04, rng);
+            let local = DVec2::new(s * (w * 0.5 + ns.x * 0.5 + gap), -d * 0.5 + ns.y * 0.5);
             let c = local_to_world(&b, local);
             // Reached from the bed: no walkway needed in front of it.
             if self.place_at(Category::Nightstand, ns, c, b.yaw, bed, &[]).is_some() {
@@ -227,7 +269,9 @@ impl Layout {
         let b = self.placed[main].obox;
         if let Some(seat) = seat {
             let s = real_size(seat, rng);
-            let c = local_to_world(&b, DVec2::new(rng.uniform(-0.15, 0.15) * size.x, size.y * 0.5 + s.y * 0.5 + 0.04));
+            let along = rng.uniform(-0.15, 0.15) * size.x;
+            let gap = self.spacing.gap(0.04, rng);
+            let c = local_to_world(&b, DVec2::new(along, size.y * 0.5 + s.y * 0.5 + gap));
             let yaw = b.yaw + std::f64::consts::PI;
             self.place_at(seat, s, c, yaw, main, &[DVec2::new(0.0, -s.y * 0.5 - ACCESS)]);
         }
@@ -266,7 +310,10 @@ impl Layout {
             seats.truncate(chairs);
             let mut n = 0;
             for (local, facing_local) in seats {
-                let at = local_to_world(&b, local);
+                // The slots stand CHAIR_GAP from the table; a chair faces the table, so it backs
+                // away from it along its own facing.
+                let back = self.spacing.gap(CHAIR_GAP, rng) - CHAIR_GAP;
+                let at = local_to_world(&b, local - facing_local * back);
                 let yaw = b.yaw + yaw_facing(facing_local);
                 if self
                     .place_at(chair, chair_size, at, yaw, t, &[DVec2::new(0.0, -chair_size.y * 0.5 - ACCESS)])
@@ -306,7 +353,8 @@ impl Layout {
         let mut coffee = None;
         if take(extras, Category::CoffeeTable) {
             let ct = real_size(Category::CoffeeTable, rng);
-            let c = local_to_world(&b, DVec2::new(0.0, d * 0.5 + 0.4 + ct.y * 0.5));
+            let gap = self.spacing.gap(0.4, rng);
+            let c = local_to_world(&b, DVec2::new(0.0, d * 0.5 + gap + ct.y * 0.5));
             coffee = self.place_at(Category::CoffeeTable, ct, c, b.yaw, s, &[]);
             if coffee.is_none() {
                 extras.push(Category::CoffeeTable);
@@ -322,7 +370,8 @@ impl Layout {
                     break;
                 }
                 let a = real_size(chair, rng);
-                let local = DVec2::new(side * (ct.size.x * 0.5 + 0.3 + a.y * 0.5), 0.0);
+                let gap = self.spacing.gap(0.3, rng);
+                let local = DVec2::new(side * (ct.size.x * 0.5 + gap + a.y * 0.5), 0.0);
                 let at = local_to_world(&ct, local);
                 let yaw = ct.yaw + yaw_facing(DVec2::new(-side, 0.0));
                 if self.place_at(chair, a, at, yaw, s, &[DVec2::new(0.0, a.y * 0.5 + 0.3)]).is_some() {
@@ -336,7 +385,8 @@ impl Layout {
                     break;
                 }
                 let e = real_size(end, rng);
-                let at = local_to_world(&b, DVec2::new(side * (w * 0.5 + e.x * 0.5 + 0.05), -d * 0.5 + e.y * 0.5));
+                let gap = self.spacing.gap(0.05, rng);
+                let at = local_to_world(&b, DVec2::new(side * (w * 0.5 + e.x * 0.5 + gap), -d * 0.5 + e.y * 0.5));
                 if self.place_at(end, e, at, b.yaw, s, &[DVec2::new(0.0, e.y * 0.5 + ACCESS)]).is_some() {
                     take(extras, end);
                 }
@@ -361,7 +411,8 @@ impl Layout {
         let size = real_size(category, rng);
         let along = (b - a).normalize();
         let inward = DVec2::new(-along.y, along.x);
-        let c = origin + dir * t + inward * (size.y * 0.5 + WALL_GAP);
+        let gap = self.spacing.gap(WALL_GAP, rng);
+        let c = origin + dir * t + inward * (size.y * 0.5 + gap);
         let ob = OBox::new(c.extend(size.z * 0.5), size, yaw_facing(inward));
         if !self.fits(&ob, 0.02) {
             return None;
@@ -402,10 +453,13 @@ impl Layout {
     }
 }
 
+/// Gap between a table's edge and the front of a chair at it, by the rule.
+const CHAIR_GAP: f64 = 0.04;
+
 /// Chair places around a table (table-local position, direction the chair faces), long sides first.
 fn chair_slots(table: &DVec3, chair: &DVec3, wanted: usize) -> Vec<(DVec2, DVec2)> {
     let per_side = ((table.x / (chair.x + 0.1)).floor() as usize).max(1);
-    let off = table.y * 0.5 + chair.y * 0.5 + 0.04;
+    let off = table.y * 0.5 + chair.y * 0.5 + CHAIR_GAP;
     let mut slots = Vec::new();
     let long = |k: usize, n: usize| (k as f64 + 0.5) / n as f64 * table.x - table.x * 0.5;
     let n_long = wanted.min(2 * per_side);
@@ -417,7 +471,7 @@ fn chair_slots(table: &DVec3, chair: &DVec3, wanted: usize) -> Vec<(DVec2, DVec2
     for k in 0..back {
         slots.push((DVec2::new(long(k, back), -off), DVec2::new(0.0, 1.0)));
     }
-    let end_off = table.x * 0.5 + chair.y * 0.5 + 0.04;
+    let end_off = table.x * 0.5 + chair.y * 0.5 + CHAIR_GAP;
     slots.push((DVec2::new(end_off, 0.0), DVec2::new(-1.0, 0.0)));
     slots.push((DVec2::new(-end_off, 0.0), DVec2::new(1.0, 0.0)));
     slots

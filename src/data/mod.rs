@@ -30,8 +30,8 @@ pub use import::{floor_outline, import_dataset, import_room};
 pub use people::{WALK_FPS, contact_pose, contact_probability, misplace, translate};
 pub use rng::Rng;
 pub use rooms::{
-    CheckedRoom, RoomRecord, furnish, generate_checked_room, generate_room, placed_against_wall, sample_categories,
-    stands_against_wall,
+    CheckedRoom, RoomRecord, furnish, generate_checked_room, generate_room, generate_spaced_room, placed_against_wall,
+    sample_categories, stands_against_wall,
 };
 pub use stats::{DATASET_FORMAT, DatasetStats, SplitStats};
 pub use synth::{CLEAN_DRAWS, SynthConfig, split_of, synthesize, write_stats};

@@ -3,7 +3,7 @@
 
 use super::Rng;
 use super::floor_gen::sample_floor;
-use super::layout::{Layout, placement_rank};
+use super::layout::{Layout, Spacing, placement_rank};
 use super::people::{contact_humans, misplace, walkers};
 use super::threedfront::{BEDROOM_COUNTS, BEDROOM_ROOMS, LIVING_COUNTS};
 use crate::physics::Physics;
@@ -170,23 +170,30 @@ pub struct RoomRecord {
     pub contact_objects: Vec<usize>,
 }
 
-/// Generates room `index` of a dataset seeded by `seed`. With `raw`, contact humans are misplaced
-/// as in 3D-FRONT HUMAN; without, they rest exactly where they were placed.
+/// Generates room `index` of a dataset seeded by `seed`, with the rules' gaps exactly. With `raw`,
+/// contact humans are misplaced as in 3D-FRONT HUMAN; without, they rest exactly where they were
+/// placed.
 pub fn generate_room(room: RoomType, seed: u64, index: u64, raw: bool) -> RoomRecord {
+    generate_spaced_room(room, seed, index, raw, Spacing::EXACT)
+}
+
+/// [`generate_room`] with the rules' gaps kept as `spacing` says (exact: the same room).
+pub fn generate_spaced_room(room: RoomType, seed: u64, index: u64, raw: bool, spacing: Spacing) -> RoomRecord {
     let mut rng = Rng::for_item(seed, index);
-    let clean = draw_room(room, &mut rng);
+    let clean = draw_room(room, spacing, &mut rng);
     if raw { misplaced(clean, &mut rng) } else { clean }
 }
 
 /// Room `index` as [`generate_room`] makes it, drawn again (up to `attempts` draws in all) until
 /// `judge` passes its clean version (everyone where they were placed): a synthetic room the
 /// product's own check rejects would teach a model what the product refuses. The first draw is
-/// [`generate_room`]'s; the last is kept when none passes.
+/// [`generate_spaced_room`]'s; the last is kept when none passes.
 pub fn generate_checked_room(
     room: RoomType,
     seed: u64,
     index: u64,
     raw: bool,
+    spacing: Spacing,
     judge: &dyn Physics,
     attempts: usize,
 ) -> CheckedRoom {
@@ -195,7 +202,7 @@ pub fn generate_checked_room(
         // Draw 0 is generate_room's stream; later draws their own.
         let stream = seed ^ (draw as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
         let mut rng = Rng::for_item(stream, index);
-        let clean = draw_room(room, &mut rng);
+        let clean = draw_room(room, spacing, &mut rng);
         let passes = judge.passes_check(&clean.scene);
         if passes || draw + 1 == attempts {
             let record = if raw { misplaced(clean, &mut rng) } else { clean };
@@ -218,13 +225,13 @@ pub struct CheckedRoom {
 
 /// A room drawn from `rng`: floor plan, furniture, contact humans resting where they were placed,
 /// walkers.
-fn draw_room(room: RoomType, rng: &mut Rng) -> RoomRecord {
+fn draw_room(room: RoomType, spacing: Spacing, rng: &mut Rng) -> RoomRecord {
     let plan = sample_floor(room, rng);
-    let mut layout = Layout::new(&plan);
+    let mut layout = Layout::with_spacing(&plan, spacing);
     // Redraw until the room holds at least three pieces and its defining piece (a bed in a
     // bedroom, a dining table in a dining room).
     for _ in 0..20 {
-        layout = Layout::new(&plan);
+        layout = Layout::with_spacing(&plan, spacing);
         let wanted = sample_categories(room, rng);
         furnish(&mut layout, room, wanted, rng);
         let has = |g: &dyn Fn(Category) -> bool| layout.placed.iter().any(|p| g(p.category));
@@ -279,22 +286,22 @@ mod tests {
     fn a_room_the_check_fails_is_drawn_again_and_the_first_draw_is_generate_rooms() {
         for raw in [false, true] {
             let first = generate_room(RoomType::Dining, 2, 7, raw);
-            let passing = generate_checked_room(RoomType::Dining, 2, 7, raw, &FailFirst::new(0), 8);
+            let passing = generate_checked_room(RoomType::Dining, 2, 7, raw, Spacing::EXACT, &FailFirst::new(0), 8);
             assert_eq!((passing.passes, passing.draw), (true, 0));
             assert_eq!(passing.record, first);
             // Two draws refused: the third is kept, a room of its own.
             let judge = FailFirst::new(2);
-            let third = generate_checked_room(RoomType::Dining, 2, 7, raw, &judge, 8);
+            let third = generate_checked_room(RoomType::Dining, 2, 7, raw, Spacing::EXACT, &judge, 8);
             assert_eq!((third.passes, third.draw, judge.asked.load(Ordering::SeqCst)), (true, 2, 3));
             assert_ne!(third.record.scene.objects, first.scene.objects);
             // None passes: the last draw, said to fail.
-            let none = generate_checked_room(RoomType::Dining, 2, 7, raw, &FailFirst::new(100), 4);
+            let none = generate_checked_room(RoomType::Dining, 2, 7, raw, Spacing::EXACT, &FailFirst::new(100), 4);
             assert_eq!((none.passes, none.draw), (false, 3));
         }
         // The raw room is its clean draw with the contact people misplaced.
         let judge = FailFirst::new(1);
-        let clean = generate_checked_room(RoomType::Bedroom, 2, 3, false, &judge, 8).record;
-        let raw = generate_checked_room(RoomType::Bedroom, 2, 3, true, &FailFirst::new(1), 8).record;
+        let clean = generate_checked_room(RoomType::Bedroom, 2, 3, false, Spacing::EXACT, &judge, 8).record;
+        let raw = generate_checked_room(RoomType::Bedroom, 2, 3, true, Spacing::EXACT, &FailFirst::new(1), 8).record;
         assert_eq!((&clean.scene.objects, &clean.contact_objects), (&raw.scene.objects, &raw.contact_objects));
         let moved = clean.scene.humans.iter().zip(&raw.scene.humans).filter(|(a, b)| a.frames != b.frames).count();
         assert_eq!(moved, raw.contact_objects.len());

@@ -7,7 +7,8 @@
 //! a room whose clean version the check fails is drawn again ([`generate_checked_room`]), and
 //! each split's stats count the rooms that pass and those drawn again.
 
-use super::rooms::{generate_checked_room, generate_room};
+use super::layout::Spacing;
+use super::rooms::{generate_checked_room, generate_spaced_room};
 use super::stats::{DATASET_FORMAT, DatasetStats, SplitStats};
 use super::threedfront::{kl_divergence, target_frequencies};
 use super::{DataError, Rng};
@@ -28,6 +29,8 @@ pub struct SynthConfig {
     pub scenes: usize,
     /// Seed.
     pub seed: u64,
+    /// How exactly the rules' gaps are kept (exact by default).
+    pub spacing: Spacing,
     /// The command line, recorded in `stats.json`.
     pub command: String,
 }
@@ -73,9 +76,9 @@ pub fn synthesize(
     let per_split: Mutex<BTreeMap<String, SplitStats>> = Mutex::new(BTreeMap::new());
     (0..cfg.scenes).into_par_iter().try_for_each(|i| -> Result<(), DataError> {
         let (record, check) = match judge {
-            None => (generate_room(cfg.room, cfg.seed, i as u64, true), None),
+            None => (generate_spaced_room(cfg.room, cfg.seed, i as u64, true, cfg.spacing), None),
             Some(judge) => {
-                let c = generate_checked_room(cfg.room, cfg.seed, i as u64, true, judge, CLEAN_DRAWS);
+                let c = generate_checked_room(cfg.room, cfg.seed, i as u64, true, cfg.spacing, judge, CLEAN_DRAWS);
                 (c.record, Some((c.passes, c.draw > 0)))
             }
         };

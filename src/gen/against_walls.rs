@@ -2,9 +2,10 @@
 //! them, with gradients.
 //!
 //! Every bed, cabinet, shelf, sofa, desk, dressing and console table of the training data stands
-//! with its back exactly [`WALL_GAP`] (5 cm) from a wall ([`stands_against_wall`]). The model puts
-//! them near one but not on the centimetre (unguided val bedrooms: the wall pieces' distance
-//! spreads from 15 cm in the wall to 11 cm out between the 10th and 90th percentiles), and repair
+//! with its back exactly [`WALL_GAP`](crate::data::layout::WALL_GAP) (5 cm) from a wall
+//! ([`stands_against_wall`]; unless `synth --gap-spread` drew the gaps). The model puts them near
+//! one but not on the centimetre (unguided val bedrooms: the wall pieces' distance spreads from
+//! 15 cm in the wall to 11 cm out between the 10th and 90th percentiles), and repair
 //! puts them back (`repair::walls`). This term does it during sampling, so that the other terms
 //! see the piece where it will stand: for each of the two corners of such a piece's back edge
 //! whose nearest wall is behind it (within [`BEHIND_COS`] of straight back) and no more than
@@ -19,7 +20,6 @@
 //! 0.45 → 0.25 m deep). Not here: the weights and steps ([`super::guidance`]).
 
 use super::guidance::{GuidedObject, ObjectGradient};
-use crate::data::layout::WALL_GAP;
 use crate::data::stands_against_wall;
 use crate::geom::Polygon;
 use glam::DVec2;
@@ -29,10 +29,16 @@ use glam::DVec2;
 pub const BEHIND_COS: f64 = 0.9;
 
 /// Σ over the pieces that stand against a wall, over the two corners of their back edge, of half
-/// the square of the corner's distance beyond `WALL_GAP` to the wall behind it, when that is at
-/// most `reach` (m), with each piece's gradient (centre x and y, and yaw: a piece turned off its
-/// wall has one corner farther than the other, and is turned back parallel to it).
-pub fn gap_to_wall_behind(objects: &[GuidedObject], floor: &Polygon, reach: f64) -> (f64, Vec<ObjectGradient>) {
+/// the square of the corner's distance beyond `gap` (m; the data's gap, [`WALL_GAP`](crate::data::layout::WALL_GAP) unless its
+/// gaps are drawn) to the wall behind it, when that is at most `reach` (m) beyond it, with each
+/// piece's gradient (centre x and y, and yaw: a piece turned off its wall has one corner farther
+/// than the other, and is turned back parallel to it).
+pub fn gap_to_wall_behind(
+    objects: &[GuidedObject],
+    floor: &Polygon,
+    gap: f64,
+    reach: f64,
+) -> (f64, Vec<ObjectGradient>) {
     let mut total = 0.0;
     let mut grads = vec![[0.0; 7]; objects.len()];
     for (o, g) in objects.iter().zip(&mut grads) {
@@ -52,7 +58,7 @@ pub fn gap_to_wall_behind(objects: &[GuidedObject], floor: &Polygon, reach: f64)
             }
             let wall = floor.nearest_boundary_point(corner);
             let distance = corner.distance(wall);
-            let excess = distance - WALL_GAP;
+            let excess = distance - gap;
             if excess <= 0.0 || excess > reach || (wall - corner).dot(back) < BEHIND_COS * distance {
                 continue;
             }
@@ -70,6 +76,7 @@ pub fn gap_to_wall_behind(objects: &[GuidedObject], floor: &Polygon, reach: f64)
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::data::layout::WALL_GAP;
     use crate::scene::Category;
     use glam::DVec3;
 
@@ -84,28 +91,42 @@ mod tests {
     #[test]
     fn a_wardrobe_off_the_wall_behind_it_is_drawn_back_to_the_data_gap() {
         // Facing +y (yaw 0), its back 13 cm from the wall y = 0: both corners 8 cm too far.
-        let (j, g) = gap_to_wall_behind(&[piece(Category::Wardrobe, 2.0, 0.43, 0.0)], &room(), 0.3);
+        let (j, g) = gap_to_wall_behind(&[piece(Category::Wardrobe, 2.0, 0.43, 0.0)], &room(), WALL_GAP, 0.3);
         assert!((j - 0.08 * 0.08).abs() < 1e-12, "{j}");
         assert!((g[0][1] - 0.16).abs() < 1e-12 && g[0][0].abs() < 1e-12 && g[0][6].abs() < 1e-12, "{:?}", g[0]);
         // At the gap, nearer (J_b's), or beyond the reach: nothing.
         for y in [0.35, 0.32, 0.7] {
-            assert_eq!(gap_to_wall_behind(&[piece(Category::Wardrobe, 2.0, y, 0.0)], &room(), 0.3).0, 0.0, "{y}");
+            assert_eq!(
+                gap_to_wall_behind(&[piece(Category::Wardrobe, 2.0, y, 0.0)], &room(), WALL_GAP, 0.3).0,
+                0.0,
+                "{y}"
+            );
         }
+    }
+
+    #[test]
+    fn a_wider_gap_draws_back_only_beyond_it() {
+        // The same wardrobe, its back 13 cm from the wall: 3 cm beyond a 10 cm gap, within 15 cm.
+        let w = [piece(Category::Wardrobe, 2.0, 0.43, 0.0)];
+        let (j, g) = gap_to_wall_behind(&w, &room(), 0.10, 0.3);
+        assert!((j - 0.03 * 0.03).abs() < 1e-12 && (g[0][1] - 0.06).abs() < 1e-12, "{j} {:?}", g[0]);
+        assert_eq!(gap_to_wall_behind(&w, &room(), 0.15, 0.3).0, 0.0);
     }
 
     #[test]
     fn only_pieces_the_data_stands_against_a_wall_and_only_the_wall_behind() {
         // A dining table 13 cm from a wall: the data stands it anywhere.
-        assert_eq!(gap_to_wall_behind(&[piece(Category::DiningTable, 2.0, 0.43, 0.0)], &room(), 0.3).0, 0.0);
+        assert_eq!(gap_to_wall_behind(&[piece(Category::DiningTable, 2.0, 0.43, 0.0)], &room(), WALL_GAP, 0.3).0, 0.0);
         // A wardrobe facing the wall (yaw π): the wall is in front of it, not behind.
         assert_eq!(
-            gap_to_wall_behind(&[piece(Category::Wardrobe, 2.0, 0.43, std::f64::consts::PI)], &room(), 0.3).0,
+            gap_to_wall_behind(&[piece(Category::Wardrobe, 2.0, 0.43, std::f64::consts::PI)], &room(), WALL_GAP, 0.3).0,
             0.0
         );
         // Facing −x (yaw π/2, its back towards +x), 13 cm from the wall x = 4.
         let (j, g) = gap_to_wall_behind(
             &[piece(Category::Wardrobe, 4.0 - 0.43, 1.5, std::f64::consts::FRAC_PI_2)],
             &room(),
+            WALL_GAP,
             0.3,
         );
         assert!(j > 0.0 && (g[0][0] + 0.16).abs() < 1e-9, "{j} {:?}", g[0]);
@@ -114,7 +135,7 @@ mod tests {
     #[test]
     fn a_piece_turned_off_its_wall_is_turned_back_and_the_gradient_is_exact() {
         let o = [piece(Category::DoubleBed, 2.0, 0.45, 0.08), piece(Category::Bookshelf, 3.5, 1.4, 1.5)];
-        let (_, g) = gap_to_wall_behind(&o, &room(), 0.3);
+        let (_, g) = gap_to_wall_behind(&o, &room(), WALL_GAP, 0.3);
         // Turned +0.08 rad (counter-clockwise), its right back corner is the farther: turning it
         // back (clockwise) lowers J.
         assert!(g[0][6] > 0.0, "{:?}", g[0]);
@@ -127,7 +148,7 @@ mod tests {
                     } else {
                         p[i].center[k] += d
                     }
-                    gap_to_wall_behind(&p, &room(), 0.3).0
+                    gap_to_wall_behind(&p, &room(), WALL_GAP, 0.3).0
                 };
                 let fd = (at(1e-6) - at(-1e-6)) / 2e-6;
                 assert!(

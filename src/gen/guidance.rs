@@ -64,6 +64,11 @@ pub struct GuidanceConfig {
     /// draw it back; farther, the model put it out in the room and J_w leaves it there.
     #[serde(default = "GuidanceConfig::default_against_wall_reach")]
     pub against_wall_reach: f64,
+    /// The gap (m) J_w draws a wall piece's back to: the data's own (`None`, the default:
+    /// [`WALL_GAP`](crate::data::layout::WALL_GAP)); for data whose gaps are drawn (`synth
+    /// --gap-spread`), the widest of them.
+    #[serde(default)]
+    pub against_wall_gap: Option<f64>,
     /// Weight of J_o (Σ pairwise IoU).
     pub object: f64,
     /// How J_o measures a pair's overlap.
@@ -169,6 +174,7 @@ impl GuidanceConfig {
             bound_margin: Some(crate::data::layout::WALL_GAP),
             against_wall: 0.2,
             against_wall_reach: Self::default_against_wall_reach(),
+            against_wall_gap: None,
             object: 1.0,
             overlap: Overlap::Smaller,
             object_gap: 0.03,
@@ -293,7 +299,7 @@ impl GuidanceConfig {
     /// Why the configuration cannot guide, if it cannot: a weight, γ, `phys` or
     /// `against_wall_reach` that is negative or not finite, `anchored_mobility` or
     /// `size_mobility` outside 0..1,
-    /// `max_step` not a positive distance, `bound_margin`, `contact_margin`, `object_gap` or
+    /// `max_step` not a positive distance, `bound_margin`, `contact_margin`, `against_wall_gap`, `object_gap` or
     /// `real_sizes` not a distance ≥ 0,
     /// `every` 0, or `iterations` above [`MAX_ITERATIONS`](Self::MAX_ITERATIONS).
     pub fn problem(&self) -> Option<String> {
@@ -322,7 +328,11 @@ impl GuidanceConfig {
         if let Some(step) = self.max_step.filter(|s| !(s.is_finite() && *s > 0.0)) {
             return Some(format!("max_step: must be a positive distance in metres, not {step}"));
         }
-        for (name, margin) in [("bound_margin", self.bound_margin), ("contact_margin", self.contact_margin)] {
+        for (name, margin) in [
+            ("bound_margin", self.bound_margin),
+            ("contact_margin", self.contact_margin),
+            ("against_wall_gap", self.against_wall_gap),
+        ] {
             if let Some(m) = margin.filter(|m| !(m.is_finite() && *m >= 0.0)) {
                 return Some(format!("{name}: must be a distance ≥ 0 in metres, not {m}"));
             }
@@ -766,7 +776,8 @@ pub fn guidance_cost(
         add(cfg.body, body_penetration(objects, &masks.bodies));
     }
     if cfg.against_wall > 0.0 {
-        add(cfg.against_wall, gap_to_wall_behind(objects, &masks.floor, cfg.against_wall_reach));
+        let wall_gap = cfg.against_wall_gap.unwrap_or(crate::data::layout::WALL_GAP);
+        add(cfg.against_wall, gap_to_wall_behind(objects, &masks.floor, wall_gap, cfg.against_wall_reach));
     }
     if let Some(wall) = masks.wall.filter(|_| cfg.square > 0.0) {
         add(cfg.square, squareness(objects, wall));

@@ -1,9 +1,10 @@
 //! The procedural dataset and calibration: the figures they must follow, on hundreds of rooms.
 
 use crate::{shade_sim, stderr};
+use shade_sim::data::layout::{Spacing, WALL_GAP};
 use shade_sim::data::{
-    DatasetStats, MAX_POINT_DEPTH, Rng, SplitStats, calibrate_scene, generate_room, iou_target, kl_divergence,
-    split_of, target_frequencies,
+    DatasetStats, MAX_POINT_DEPTH, Rng, SplitStats, calibrate_scene, generate_room, generate_spaced_room, iou_target,
+    kl_divergence, split_of, stands_against_wall, target_frequencies,
 };
 use shade_sim::eval::{contact_iou, scene_penetration};
 use shade_sim::geom::{footprint_intersection_area, intersection_volume};
@@ -59,6 +60,84 @@ fn five_hundred_rooms_follow_3d_front_and_the_rules() {
         let kl = kl_divergence(&target_frequencies(room), &stats.frequencies(room));
         assert!(kl <= 0.05, "{room}: category KL {kl}");
     }
+}
+
+/// The gaps of a room's wall pieces from their walls (the nearer corner of the back edge) and of
+/// its dining chairs from their table (the nearest front corner), m.
+fn rule_gaps(s: &Scene) -> (Vec<f64>, Vec<f64>) {
+    use shade_sim::scene::Category;
+    let floor = s.floor_plan.polygon();
+    let mut walls = Vec::new();
+    for o in s.objects.iter().filter(|o| stands_against_wall(o.category)) {
+        let f = o.obox().footprint();
+        // Footprint corners run (−x,−y), (+x,−y), …: the first two are the back edge, and the wall
+        // nearest its middle is the one behind it.
+        walls.push(-floor.signed_distance((f[0] + f[1]) * 0.5));
+    }
+    let mut chairs = Vec::new();
+    if let Some(table) = s.objects.iter().find(|o| o.category == Category::DiningTable) {
+        for c in s.objects.iter().filter(|o| o.category == Category::DiningChair) {
+            let gap = c
+                .obox()
+                .footprint()
+                .iter()
+                .map(|&p| table.obox().footprint_signed_distance(p))
+                .fold(f64::MAX, f64::min);
+            // Chairs at the table only (a spare one elsewhere in the room does not count).
+            if gap < 0.3 {
+                chairs.push(gap);
+            }
+        }
+    }
+    (walls, chairs)
+}
+
+/// By default the rules' gaps are exact; with a spread they are drawn for every piece within it,
+/// and the rooms keep every other rule.
+#[test]
+fn a_gap_spread_draws_the_rules_gaps_and_keeps_the_rooms_valid() {
+    let spread = Spacing { spread: 0.05 };
+    let (mut exact, mut spaced) = ((Vec::new(), Vec::new()), (Vec::new(), Vec::new()));
+    for i in 0..150 {
+        let (w, c) = rule_gaps(&generate_room(RoomType::Dining, 3, i, false).scene);
+        exact.0.extend(w);
+        exact.1.extend(c);
+        let s = generate_spaced_room(RoomType::Dining, 3, i, false, spread).scene;
+        assert!(validate(&s).is_empty(), "{i}: {:?}", validate(&s));
+        let floor = s.floor_plan.polygon();
+        for (a, o) in s.objects.iter().enumerate() {
+            assert!(o.obox().footprint().iter().all(|&c| floor.contains(c)), "{i}: {} leaves the floor", o.category);
+            for p in s.objects[a + 1..].iter().filter(|p| !p.category.is_hanging() && !o.category.is_hanging()) {
+                assert!(
+                    footprint_intersection_area(&o.obox(), &p.obox()) < 1e-9,
+                    "{i}: {} in {}",
+                    o.category,
+                    p.category
+                );
+            }
+        }
+        let (w, c) = rule_gaps(&s);
+        spaced.0.extend(w);
+        spaced.1.extend(c);
+    }
+    let spread_of = |v: &[f64]| {
+        let m = v.iter().sum::<f64>() / v.len() as f64;
+        (m, (v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / v.len() as f64).sqrt())
+    };
+    // Exact: every wall piece 5 cm off its wall and every chair 4 cm from its table, to the
+    // millimetre the centres are rounded to (walls at an angle excepted by the corner's own
+    // rounding: within 2 mm).
+    assert!(exact.0.len() > 100 && exact.1.len() > 300, "{} {}", exact.0.len(), exact.1.len());
+    assert!(exact.0.iter().all(|g| (g - WALL_GAP).abs() < 2e-3), "{:?}", exact.0);
+    assert!(exact.1.iter().all(|g| (g - 0.04).abs() < 2e-3), "{:?}", exact.1);
+    // Spread: within [2 cm, rule + 5 cm], spread out (a uniform draw on [2, 10] cm has σ 2.3 cm,
+    // on [2, 9] cm 2.0 cm), around the middle of the range.
+    assert!(spaced.0.iter().all(|&g| (0.019..=0.102).contains(&g)), "{:?}", spaced.0);
+    assert!(spaced.1.iter().all(|&g| (0.019..=0.092).contains(&g)), "{:?}", spaced.1);
+    let (wm, ws) = spread_of(&spaced.0);
+    let (cm, cs) = spread_of(&spaced.1);
+    assert!((wm - 0.06).abs() < 0.006 && (ws - 0.023).abs() < 0.004, "walls: mean {wm}, σ {ws}");
+    assert!((cm - 0.055).abs() < 0.005 && (cs - 0.020).abs() < 0.003, "chairs: mean {cm}, σ {cs}");
 }
 
 /// The raw dataset is as poor as 3D-FRONT HUMAN's, and calibration meets SHADE's Table 2 targets.

@@ -14,7 +14,7 @@ use std::time::Duration;
 
 fn dataset(dir: &Path, room: RoomType) -> PathBuf {
     let data = dir.join(format!("{room}-data"));
-    let cfg = SynthConfig { room, scenes: 12, seed: 4, command: "test".into() };
+    let cfg = SynthConfig { room, scenes: 12, seed: 4, spacing: Default::default(), command: "test".into() };
     synthesize(&cfg, &data, None, &|_| {}).expect("synth writes");
     data
 }
@@ -70,7 +70,7 @@ fn a_stopped_and_resumed_run_ends_with_the_same_weights_as_an_uninterrupted_one(
     // A checkpoint from another dataset is refused.
     let other = dir.path().join("other-data");
     synthesize(
-        &SynthConfig { room: RoomType::Bedroom, scenes: 12, seed: 5, command: "x".into() },
+        &SynthConfig { room: RoomType::Bedroom, scenes: 12, seed: 5, spacing: Default::default(), command: "x".into() },
         &other,
         None,
         &|_| {},
