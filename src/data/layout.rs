@@ -49,7 +49,7 @@ pub struct Placed {
 /// the rooms are those of the exact rules draw for draw. With a spread `s`, each gap `g` is drawn
 /// uniformly from `[max(g − s, 2 cm), g + s]` for every piece (2 cm: the clearance a piece placed
 /// beside another keeps from the rest).
-#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Spacing {
     /// Half the width of the range each gap is drawn from (m; 0 = the rules' gaps exactly).
     pub spread: f64,

@@ -125,6 +125,10 @@ fn negative_and_invalid_numbers_are_one_line_errors_in_every_command() {
         ),
         (vec!["check", input, "--tolerance", "-0.01"], "error: --tolerance: must be a non-negative number"),
         (
+            vec!["synth", "--room", "dining", "--scenes", "1", "--out", out, "--gap-spread", "-0.05"],
+            "error: --gap-spread: must be between 0 and 0.2 (m), not -0.05",
+        ),
+        (
             vec!["import-motion", input, "--room", "kitchen", "--floor", "5x4", "--out", out],
             "error: invalid value 'kitchen' for '--room <ROOM>' [possible values: bedroom, living, dining]",
         ),
