@@ -171,6 +171,15 @@ pub fn rejections_message(r: &Rejections) -> Option<String> {
     Some(format!("no clean layout in {} samples; most often: {}", r.layouts, said.join(", ")))
 }
 
+/// What `generator` says of an input before sampling it, as the command line and Python warn it:
+/// its contact spans beyond those the model conditions on ([`unseen_contacts_message`]), and a
+/// floor whose area none of the model's training rooms has ([`Generator::unseen_floor`]).
+pub fn input_notes(generator: &Generator, scene: &Scene) -> Vec<String> {
+    let seen = generator.checkpoint.meta.model.max_contacts;
+    let contacts = unseen_contacts_message(&generator.unseen_contacts(scene), seen);
+    contacts.into_iter().chain(generator.unseen_floor(scene).map(|f| f.to_string())).collect()
+}
+
 /// What the model does not see of an input ([`Generator::unseen_contacts`]): its contact spans
 /// beyond the `seen` the model conditions on, by person and action (`None` when it sees them all).
 pub fn unseen_contacts_message(unseen: &[ContactBox], seen: usize) -> Option<String> {

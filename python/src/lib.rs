@@ -23,8 +23,8 @@ use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig};
 use shade_sim::human::{people_meeting, seats_in_the_way};
 use shade_sim::motion::{ImportOptions, Placement, Trim, Units, UpAxis, npy::read_npz, read_motion};
 use shade_sim::pipeline::{
-    LayoutOptions, import_placed, make_grouped_layouts, off_the_floor_warnings, people_in_walls_message,
-    rejections_message, room_groups, unseen_contacts_message,
+    LayoutOptions, import_placed, input_notes, make_grouped_layouts, off_the_floor_warnings, people_in_walls_message,
+    rejections_message, room_groups,
 };
 use shade_sim::repair::RepairConfig;
 use shade_sim::scene::{ActionSpan, FloorPlan, RoomType, Scene, validate_floor_plan};
@@ -281,11 +281,11 @@ fn generate<'py>(
         }
         generators.push(generator);
     }
-    // As the command line: more people in contact than the model conditions on, said before sampling.
+    // As the command line: more people in contact than the model conditions on, a floor unlike
+    // its training rooms', said before sampling.
     for ((_, members), generator) in groups.iter().zip(&generators) {
-        let seen = generator.checkpoint.meta.model.max_contacts;
         for &i in members {
-            if let Some(note) = unseen_contacts_message(&generator.unseen_contacts(&inputs[i]), seen) {
+            for note in input_notes(generator, &inputs[i]) {
                 user_warning(py, &format!("input {i}: {note}"))?;
             }
         }

@@ -92,6 +92,16 @@ def test_more_people_in_contact_than_the_model_sees_are_named_in_a_warning(root)
         shade_sim.generate(raw, seed=0, repair=False, guidance="none")
 
 
+def test_a_floor_unlike_any_training_room_is_named_in_a_warning(root):
+    import pytest
+
+    raw = shade_sim.load_scene(f"{root}/tests/inputs/dinner_for_three.json").to_dict()
+    # 10 m × 8 m: twice the largest of the dining model's training rooms (40 m²).
+    raw["floor_plan"]["polygon"] = [[-3, -2], [7, -2], [7, 6], [-3, 6]]
+    with pytest.warns(UserWarning, match=r"input 0: the floor plan's 80\.0 m² is larger than any of the model's dining training rooms \(10\.0–40\.0 m²\)"):
+        shade_sim.generate(raw, seed=0, repair=False, guidance="none")
+
+
 def test_check_reports_two_overlapping_pieces(root):
     raw = shade_sim.load_scene(f"{root}/scenes/reference/bedroom_rect.json").to_dict()
     first = raw["objects"][0]

@@ -11,8 +11,8 @@ use rayon::prelude::*;
 use shade_sim::generator::{Checkpoint, Generator, GuidanceConfig, shipped_generator};
 use shade_sim::human::{Meeting, SeatInTheWay, people_meeting, seats_in_the_way};
 use shade_sim::pipeline::{
-    LayoutOptions, make_grouped_layouts, off_the_floor_warnings, people_in_walls_message, rejections_message,
-    room_groups, unseen_contacts_message,
+    LayoutOptions, input_notes, make_grouped_layouts, off_the_floor_warnings, people_in_walls_message,
+    rejections_message, room_groups,
 };
 use shade_sim::repair::{RepairConfig, RepairTotals};
 use shade_sim::scene::{RoomType, Scene};
@@ -234,11 +234,11 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
             );
         }
     }
-    // More people in contact than the model conditions on: said before sampling.
+    // More people in contact than the model conditions on, a floor unlike its training rooms':
+    // said before sampling.
     for (g, (_, members)) in groups.iter().enumerate() {
-        let seen = generators[g].checkpoint.meta.model.max_contacts;
         for &i in members {
-            if let Some(note) = unseen_contacts_message(&generators[g].unseen_contacts(&inputs[i]), seen) {
+            for note in input_notes(&generators[g], &inputs[i]) {
                 tracing::warn!("{}: {note}", files[i].display());
             }
         }

@@ -4,7 +4,7 @@
 //!
 //! Every file is written to a temporary name and renamed, so a stop never leaves half a checkpoint.
 
-use super::{Bounds, CountPrior, Denoiser, GenError, ModelConfig, Params, SeenCounts};
+use super::{Bounds, CountPrior, Denoiser, GenError, ModelConfig, Params, SeenCounts, SeenFloors};
 use crate::scene::Category;
 use crate::scene::write_atomic;
 use candle_core::{Device, Tensor};
@@ -76,6 +76,10 @@ pub struct CheckpointMeta {
     /// among; absent in folders written before it existed, which sample without it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub seen_counts: Option<SeenCounts>,
+    /// The floor areas the training rooms have, against which `generate` names an input's floor
+    /// the model never saw the like of; absent in folders written before it existed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seen_floors: Option<SeenFloors>,
     /// How the model samples by default, chosen on its val split after training; absent: DDPM's
     /// chain. `train` writes it when asked (`train --geometry-eta`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -175,6 +179,9 @@ pub fn parse_meta(text: &str, origin: &Path) -> Result<CheckpointMeta, GenError>
     }
     if let Some(problem) = meta.seen_counts.as_ref().and_then(|s| s.problem(&meta.model.rooms(), meta.categories.len()))
     {
+        return Err(GenError::checkpoint(origin, problem));
+    }
+    if let Some(problem) = meta.seen_floors.as_ref().and_then(SeenFloors::problem) {
         return Err(GenError::checkpoint(origin, problem));
     }
     Ok(meta)

@@ -5,7 +5,7 @@ use super::count_prior::contact_kinds;
 use super::count_projection::{CountRule, CountTargets};
 use super::dataset::HostBatch;
 use super::sampler::{Chain, Denoisers, Guidance, Projection, empty_projection_steps, sample_from};
-use super::{Checkpoint, Features, GenError, Schedule, tokens};
+use super::{Checkpoint, Features, GenError, Schedule, UnseenFloor, tokens};
 use crate::data::Rng;
 use crate::human::{Conditions, ContactBox};
 use crate::scene::{RoomFrame, Scene};
@@ -195,6 +195,13 @@ impl Generator {
     pub fn unseen_contacts(&self, scene: &Scene) -> Vec<ContactBox> {
         let seen = self.checkpoint.meta.model.max_contacts;
         Conditions::contact_boxes_of(scene).into_iter().skip(seen).collect()
+    }
+
+    /// `scene`'s floor, if its area is outside the training rooms' ([`super::SeenFloors`]; `None`
+    /// too for a model folder that does not record them).
+    pub fn unseen_floor(&self, scene: &Scene) -> Option<UnseenFloor> {
+        let area = scene.floor_plan.polygon().area() as f32;
+        self.checkpoint.meta.seen_floors.as_ref()?.unseen(scene.room_type, area)
     }
 
     /// `samples` layouts per input, in input order then sample order. Deterministic for `seed`.

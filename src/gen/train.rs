@@ -16,7 +16,7 @@ use super::checkpoint::{
 use super::dataset::{Example, HostBatch, NoisyBatch, balance_categories, load_split};
 use super::engine::{Engine, Gradients};
 use super::flat::ParamLayout;
-use super::{Bounds, CountPrior, Denoiser, Dihedral, GenError, ModelConfig, Params, Schedule, SeenCounts};
+use super::{Bounds, CountPrior, Denoiser, Dihedral, GenError, ModelConfig, Params, Schedule, SeenCounts, SeenFloors};
 use crate::data::{DatasetStats, Rng, read_stats};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -260,6 +260,11 @@ impl TrainingRooms {
     pub fn seen_counts(&self) -> SeenCounts {
         SeenCounts::of(self.examples.iter().map(|e| (e.make_up.0, e.pieces.as_slice())))
     }
+
+    /// The floor areas these rooms have, as a model trained on them records them.
+    pub fn seen_floors(&self) -> SeenFloors {
+        SeenFloors::of(self.examples.iter().map(|e| (e.make_up.0, e.make_up.2)))
+    }
 }
 
 /// Trains (or resumes) a model as `opts` says, until done or `stop` is set.
@@ -274,6 +279,7 @@ pub fn train(
     }
     let rooms = training_rooms(opts)?;
     let seen_counts = rooms.seen_counts();
+    let seen_floors = rooms.seen_floors();
     let TrainingRooms { examples: mut train_set, bounds, stats, data_hash } = rooms;
     balance_categories(&mut train_set, opts.category_balance, cfg);
     let count_prior =
@@ -376,6 +382,7 @@ pub fn train(
                     weights_hash: None,
                     count_prior: count_prior.clone(),
                     seen_counts: Some(seen_counts.clone()),
+                    seen_floors: Some(seen_floors.clone()),
                     sampling: opts.sampling.clone(),
                 };
                 let state = StateMeta { step, adam_steps: adam.steps, seconds, val_loss, data_hash: data_hash.clone() };

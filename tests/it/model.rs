@@ -978,3 +978,40 @@ fn contact_spans_beyond_the_models_slots_are_named_before_sampling() {
     assert!(dining.unseen_contacts(&scene).is_empty());
     assert_eq!(shade_sim::pipeline::unseen_contacts_message(&[], 8), None);
 }
+
+#[test]
+fn a_floor_unlike_any_training_room_is_named_before_sampling() {
+    // The shipped dining model's training rooms are 10–40 m² (models/MODEL_CARD.md).
+    let mut scene = Scene::load(root().join("tests/inputs/dinner_for_three.json")).unwrap();
+    let dining = Generator::new(shade_sim::generator::shipped_model(RoomType::Dining).unwrap());
+    assert_eq!(dining.unseen_floor(&scene), None, "4.2 × 3.6 m is a room the model saw");
+    assert!(shade_sim::pipeline::input_notes(&dining, &scene).is_empty());
+    scene.floor_plan.polygon = vec![[-3.0, -2.0], [7.0, -2.0], [7.0, 6.0], [-3.0, 6.0]];
+    let unseen = dining.unseen_floor(&scene).expect("80 m² is twice the largest");
+    assert_eq!((unseen.area, unseen.seen), (80.0, [10.0, 40.0]));
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("hall.json");
+    scene.save(&input).unwrap();
+    let out = dir.path().join("out");
+    let args = ["--out", out.to_str().unwrap(), "--no-repair", "--guidance", "none"];
+    let o = shade_sim(&[&["generate", "--input", input.to_str().unwrap()][..], &args].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let said =
+        "hall.json: the floor plan's 80.0 m² is larger than any of the model's dining training rooms (10.0–40.0 m²)";
+    assert_eq!(stderr(&o).matches(said).count(), 1, "{}", stderr(&o));
+    // A model folder that does not record its rooms' floors says nothing of them.
+    let mut unrecorded = shade_sim::generator::shipped_model(RoomType::Dining).unwrap();
+    unrecorded.meta.seen_floors = None;
+    assert_eq!(Generator::new(unrecorded).unseen_floor(&scene), None);
+    // A folder whose areas are no range is a bad config.
+    let folder = dir.path().join("dining");
+    std::fs::create_dir_all(&folder).unwrap();
+    let models = root().join("models/dining");
+    std::fs::copy(models.join("model.safetensors"), folder.join("model.safetensors")).unwrap();
+    let mut config: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(models.join("config.json")).unwrap()).unwrap();
+    config["seen_floors"]["rooms"][0]["area"] = serde_json::json!([40.0, 10.0]);
+    std::fs::write(folder.join("config.json"), config.to_string()).unwrap();
+    let err = Checkpoint::load(&folder).unwrap_err().to_string();
+    assert!(err.ends_with("seen_floors for dining: area [40, 10] is not a range of m² above 0"), "{err}");
+}

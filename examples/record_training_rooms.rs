@@ -1,11 +1,15 @@
-//! Records in a model folder trained before `seen_counts` existed the counts per category of its
-//! training rooms, as `train` now records them (`CheckpointMeta::seen_counts`), so that sampling
-//! keeps its layouts to counts the data has. The data must be the model's own: as many training
-//! rooms as `config.json` recorded at training, or nothing is written. (Not its hash: that covers
-//! the datasets' `stats.json`, whose commands name this machine's paths and flags, and data made
-//! again elsewhere, room for room the same, hashes otherwise.)
+//! Records in a model folder trained before `seen_counts` and `seen_floors` existed what its
+//! training rooms have, as `train` now records it: the counts per category
+//! (`CheckpointMeta::seen_counts`), so that sampling keeps its layouts to counts the data has, and
+//! the floor areas (`CheckpointMeta::seen_floors`), so that `generate` names an input's floor
+//! unlike any of them; the rest of `config.json` is written as `train` writes it now (fields added
+//! since the model was trained, at their defaults, which mean what their absence meant). The data
+//! must be the model's own: as many training rooms as `config.json` recorded at training, or
+//! nothing is written. (Not its hash: that covers the datasets' `stats.json`, whose commands name
+//! this machine's paths and flags, and data made again elsewhere, room for room the same, hashes
+//! otherwise.)
 //!
-//! Run: `cargo run --release --example record_seen_counts -- MODEL_DIR DATA [--extra-data DIR]…
+//! Run: `cargo run --release --example record_training_rooms -- MODEL_DIR DATA [--extra-data DIR]…
 //! [--joint-data DIR]…` (the folders the model's `train` command named).
 
 use anyhow::{Context, bail};
@@ -15,7 +19,7 @@ use std::path::{Path, PathBuf};
 
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let usage = "usage: record_seen_counts MODEL_DIR DATA [--extra-data DIR]… [--joint-data DIR]…";
+    let usage = "usage: record_training_rooms MODEL_DIR DATA [--extra-data DIR]… [--joint-data DIR]…";
     let [model, data, rest @ ..] = &args[..] else { bail!(usage) };
     let config = Path::new(model).join(CONFIG_FILE);
     let text = std::fs::read_to_string(&config).with_context(|| config.display().to_string())?;
@@ -37,7 +41,8 @@ fn main() -> anyhow::Result<()> {
         );
     }
     meta.seen_counts = Some(rooms.seen_counts());
+    meta.seen_floors = Some(rooms.seen_floors());
     write_json(&meta, &config)?;
-    println!("{}: seen counts of {} training rooms recorded", config.display(), rooms.examples.len());
+    println!("{}: counts and floor areas of {} training rooms recorded", config.display(), rooms.examples.len());
     Ok(())
 }
