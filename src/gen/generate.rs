@@ -197,10 +197,11 @@ impl Generator {
         Conditions::contact_boxes_of(scene).into_iter().skip(seen).collect()
     }
 
-    /// `scene`'s floor, if its area is outside the training rooms' ([`super::SeenFloors`]; `None`
-    /// too for a model folder that does not record them).
+    /// `scene`'s floor, if its area (to 0.1 m², as the training rooms' are recorded) is outside
+    /// the training rooms' ([`super::SeenFloors`]; `None` too for a model folder that does not
+    /// record them).
     pub fn unseen_floor(&self, scene: &Scene) -> Option<UnseenFloor> {
-        let area = scene.floor_plan.polygon().area() as f32;
+        let area = ((scene.floor_plan.polygon().area() * 10.0).round() / 10.0) as f32;
         self.checkpoint.meta.seen_floors.as_ref()?.unseen(scene.room_type, area)
     }
 

@@ -23,7 +23,7 @@ pub struct SeenFloor {
     pub room: RoomType,
     /// How many training rooms of it there were.
     pub rooms: usize,
-    /// The least and the largest floor area among them (m², as the encoded rooms keep it).
+    /// The least and the largest floor area among them (m², to 0.1 as the encoded rooms keep it).
     pub area: [f32; 2],
 }
 

@@ -646,8 +646,11 @@ fn a_model_records_the_counts_its_training_rooms_have_and_samples_keep_to_them()
     let seen = ckpt.meta.seen_counts.clone().expect("seen counts");
     // Counted by hand from the train split: per category, each count and the rooms that have it.
     let mut want: Vec<std::collections::BTreeMap<u32, u32>> = vec![Default::default(); ckpt.meta.categories.len()];
+    let (mut rooms, mut areas) = (0, [f32::INFINITY, 0.0f32]);
     for f in std::fs::read_dir(data.join("train")).unwrap() {
         let scene = Scene::load(f.unwrap().path()).unwrap();
+        let area = ((scene.floor_plan.polygon().area() * 10.0).round() / 10.0) as f32; // to 0.1 m²
+        (rooms, areas) = (rooms + 1, [areas[0].min(area), areas[1].max(area)]);
         for (c, &category) in ckpt.meta.categories.iter().enumerate() {
             let n = scene.objects.iter().filter(|o| o.category == category).count() as u32;
             *want[c].entry(n).or_default() += 1;
@@ -657,6 +660,9 @@ fn a_model_records_the_counts_its_training_rooms_have_and_samples_keep_to_them()
     let got: Vec<std::collections::BTreeMap<u32, u32>> =
         room.categories.iter().map(|pairs| pairs.iter().map(|p| (p[0], p[1])).collect()).collect();
     assert_eq!(got, want);
+    // And their floors' least and largest area.
+    let floors = ckpt.meta.seen_floors.clone().expect("seen floors");
+    assert_eq!(floors.rooms, [shade_sim::generator::SeenFloor { room: RoomType::Bedroom, rooms, area: areas }]);
 
     // Were every training room to have one wardrobe, an empty room (no one in it, so no piece is
     // held for anyone) would get one in every sample; this two-step model's own samples are empty.
