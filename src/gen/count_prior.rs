@@ -73,11 +73,17 @@ pub fn contact_kinds(cond: &Conditions) -> ContactKinds {
     kinds
 }
 
+/// A floor area (m²) as a model records its training rooms' (here and in
+/// [`super::SeenFloors`]): to 0.1 m².
+pub fn recorded_area(area: f64) -> f32 {
+    ((area * 10.0).round() / 10.0) as f32
+}
+
 impl PriorRoom {
     /// A room of type `room` with `kinds` of contact boxes, `area` m² of floor and `counts`
     /// pieces per category.
     pub fn new(room: RoomType, kinds: ContactKinds, area: f64, counts: Vec<u8>) -> PriorRoom {
-        PriorRoom(room, kinds, ((area * 10.0).round() / 10.0) as f32, counts)
+        PriorRoom(room, kinds, recorded_area(area), counts)
     }
 }
 

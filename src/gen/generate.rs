@@ -1,7 +1,7 @@
 //! Layout generation for input scenes (floor plan + humans): conditioning, batched sampling,
 //! decoding into shade-scene/1 scenes that keep the input's floor plan and humans.
 
-use super::count_prior::contact_kinds;
+use super::count_prior::{contact_kinds, recorded_area};
 use super::count_projection::{CountRule, CountTargets};
 use super::dataset::HostBatch;
 use super::sampler::{Chain, Denoisers, Guidance, Projection, empty_projection_steps, sample_from};
@@ -201,7 +201,7 @@ impl Generator {
     /// the training rooms' ([`super::SeenFloors`]; `None` too for a model folder that does not
     /// record them).
     pub fn unseen_floor(&self, scene: &Scene) -> Option<UnseenFloor> {
-        let area = ((scene.floor_plan.polygon().area() * 10.0).round() / 10.0) as f32;
+        let area = recorded_area(scene.floor_plan.polygon().area());
         self.checkpoint.meta.seen_floors.as_ref()?.unseen(scene.room_type, area)
     }
 
