@@ -1,7 +1,7 @@
 //! Records in a model folder trained before `seen_counts` and `seen_floors` existed what its
 //! training rooms have, as `train` now records it: the counts per category
 //! (`CheckpointMeta::seen_counts`), so that sampling keeps its layouts to counts the data has, and
-//! the floor areas (`CheckpointMeta::seen_floors`), so that `generate` names an input's floor
+//! the floor sizes (`CheckpointMeta::seen_floors`: areas, widths and lengths), so that `generate` names an input's floor
 //! unlike any of them; the rest of `config.json` is written as `train` writes it now (fields added
 //! since the model was trained, at their defaults, which mean what their absence meant). The data
 //! must be the model's own: as many training rooms as `config.json` recorded at training, or
@@ -43,6 +43,6 @@ fn main() -> anyhow::Result<()> {
     meta.seen_counts = Some(rooms.seen_counts());
     meta.seen_floors = Some(rooms.seen_floors());
     write_json(&meta, &config)?;
-    println!("{}: counts and floor areas of {} training rooms recorded", config.display(), rooms.examples.len());
+    println!("{}: counts and floor sizes of {} training rooms recorded", config.display(), rooms.examples.len());
     Ok(())
 }

@@ -173,7 +173,7 @@ pub fn rejections_message(r: &Rejections) -> Option<String> {
 
 /// What `generator` says of an input before sampling it, as the command line and Python warn it:
 /// its contact spans beyond those the model conditions on ([`unseen_contacts_message`]), and a
-/// floor whose area none of the model's training rooms has ([`Generator::unseen_floor`]).
+/// floor whose area, width or length none of the model's training rooms has ([`Generator::unseen_floor`]).
 pub fn input_notes(generator: &Generator, scene: &Scene) -> Vec<String> {
     let seen = generator.checkpoint.meta.model.max_contacts;
     let contacts = unseen_contacts_message(&generator.unseen_contacts(scene), seen);

@@ -92,8 +92,9 @@ def test_more_people_in_contact_than_the_model_sees_are_named_in_a_warning(root)
         shade_sim.generate(raw, seed=0, repair=False, guidance="none")
     notes = [str(w.message) for w in said]
     assert any(n.startswith("input 0: 4 contact spans beyond the 8 the model conditions on (head2 sit, ") for n in notes), notes
-    # The 18 m × 3.6 m room is larger than any the dining model was trained on, and it says so too.
-    assert any("the floor plan's 64.8 m² is larger than any" in n for n in notes), notes
+    # The 18 m × 3.6 m room is larger and longer than any the dining model was trained on, and it
+    # says so too.
+    assert any("its 64.8 m² is larger than any" in n and "it is 18.0 m long, longer than any" in n for n in notes), notes
 
 
 def test_a_floor_unlike_any_training_room_is_named_in_a_warning(root):
@@ -102,7 +103,7 @@ def test_a_floor_unlike_any_training_room_is_named_in_a_warning(root):
     raw = shade_sim.load_scene(f"{root}/tests/inputs/dinner_for_three.json").to_dict()
     # 10 m × 8 m: twice the largest of the dining model's training rooms (40 m²).
     raw["floor_plan"]["polygon"] = [[-3, -2], [7, -2], [7, 6], [-3, 6]]
-    with pytest.warns(UserWarning, match=r"input 0: the floor plan's 80\.0 m² is larger than any of the model's dining training rooms \(10\.0–40\.0 m²\)"):
+    with pytest.warns(UserWarning, match=r"input 0: the floor plan is unlike the model's dining training rooms: its 80\.0 m² is larger than any \(10\.0–40\.0 m²\)"):
         shade_sim.generate(raw, seed=0, repair=False, guidance="none")
 
 

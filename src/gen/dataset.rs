@@ -4,7 +4,9 @@
 use super::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES};
 use super::count_prior::{PriorRoom, contact_kinds};
 use super::model::CondTensors;
-use super::{Bounds, Dihedral, Features, GenError, ModelConfig, Prediction, Schedule, anchors, roles, tokens};
+use super::{
+    Bounds, Dihedral, Features, FloorSize, GenError, ModelConfig, Prediction, Schedule, anchors, roles, tokens,
+};
 use crate::data::{DataError, Rng};
 use crate::geom::OBox;
 use crate::human::Conditions;
@@ -27,6 +29,8 @@ pub struct Example {
     /// The scene's pieces per category (the room type's order), as [`super::SeenCounts`] counts
     /// them: a piece several people share is one piece.
     pub pieces: Vec<u8>,
+    /// How large its floor is, as [`super::SeenFloors`] records it.
+    pub floor: FloorSize,
 }
 
 impl Example {
@@ -48,7 +52,7 @@ impl Example {
         let area = scene.floor_plan.polygon().area();
         let make_up = PriorRoom::new(scene.room_type, contact_kinds(&cond), area, counts);
         let pieces = scene.room_type.category_counts(&scene.objects).into_iter().map(|n| n.min(255) as u8).collect();
-        Example { tokens, weights, features, make_up, pieces }
+        Example { tokens, weights, features, make_up, pieces, floor: FloorSize::of(&scene.floor_plan) }
     }
 
     /// This example under the symmetry `g`.

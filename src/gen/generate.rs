@@ -1,11 +1,11 @@
 //! Layout generation for input scenes (floor plan + humans): conditioning, batched sampling,
 //! decoding into shade-scene/1 scenes that keep the input's floor plan and humans.
 
-use super::count_prior::{contact_kinds, recorded_area};
+use super::count_prior::contact_kinds;
 use super::count_projection::{CountRule, CountTargets};
 use super::dataset::HostBatch;
 use super::sampler::{Chain, Denoisers, Guidance, Projection, empty_projection_steps, sample_from};
-use super::{Checkpoint, Features, GenError, Schedule, UnseenFloor, tokens};
+use super::{Checkpoint, Features, FloorSize, GenError, Schedule, UnseenFloor, tokens};
 use crate::data::Rng;
 use crate::human::{Conditions, ContactBox};
 use crate::scene::{RoomFrame, Scene};
@@ -197,12 +197,11 @@ impl Generator {
         Conditions::contact_boxes_of(scene).into_iter().skip(seen).collect()
     }
 
-    /// `scene`'s floor, if its area (to 0.1 m², as the training rooms' are recorded) is outside
-    /// the training rooms' ([`super::SeenFloors`]; `None` too for a model folder that does not
-    /// record them).
+    /// `scene`'s floor, if its area, width or length (to 0.1, as the training rooms' are
+    /// recorded) is outside the training rooms' ([`super::SeenFloors`]; `None` too for a model
+    /// folder that does not record them).
     pub fn unseen_floor(&self, scene: &Scene) -> Option<UnseenFloor> {
-        let area = recorded_area(scene.floor_plan.polygon().area());
-        self.checkpoint.meta.seen_floors.as_ref()?.unseen(scene.room_type, area)
+        self.checkpoint.meta.seen_floors.as_ref()?.unseen(scene.room_type, FloorSize::of(&scene.floor_plan))
     }
 
     /// `samples` layouts per input, in input order then sample order. Deterministic for `seed`.

@@ -61,7 +61,7 @@ pub use phys_guidance::{PhysicsGuidance, physics_displacements};
 pub use sampler::{Chain, Denoisers, Guidance, Projection, empty_projection_steps, sample, sample_from};
 pub use schedule::Schedule;
 pub use seen_counts::{SeenCounts, SeenRoom};
-pub use seen_floors::{SeenFloor, SeenFloors, UnseenFloor};
+pub use seen_floors::{Beyond, FloorMeasure, FloorSize, SeenFloor, SeenFloors, UnseenFloor};
 pub use shipped::{shipped_expert, shipped_generator, shipped_model, shipped_rooms};
 pub use tokens::Bounds;
 pub use train::{TrainObserver, TrainOptions, TrainOutcome, TrainingRooms, data_bounds, train, training_rooms};

@@ -1,13 +1,42 @@
-//! The floor areas a model's training rooms have, per room type: the least and the largest. An
-//! input whose floor is outside them is one the model never saw a room like, and `generate` says
-//! so before sampling ([`crate::pipeline::input_notes`]); its layouts may still pass `check`.
+//! The floors a model's training rooms have, per room type: the least and the largest area, and
+//! the least and the largest short and long side of the plan in its own frame. An input whose
+//! floor is outside them — a hall larger than any training room, a 2 m corridor narrower than any —
+//! is one the model never saw a room like, and `generate` says so before sampling
+//! ([`crate::pipeline::input_notes`]); its layouts may still pass `check`.
 //!
-//! It knows the areas only, not the plans' shapes or proportions, and changes nothing sampled.
+//! It knows sizes only, not the plans' shapes (an L and a rectangle of one size are alike to it),
+//! and changes nothing sampled.
 
-use crate::scene::RoomType;
+use super::count_prior::recorded_area;
+use crate::scene::{FloorPlan, RoomFrame, RoomType};
 use serde::{Deserialize, Serialize};
 
-/// Per room type, the floor areas of the training rooms.
+/// How large one floor plan is, as a model records its training rooms': its area (m², to 0.1)
+/// and the short and long side of its bounding box in its own frame ([`RoomFrame`]; m, to 0.1).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FloorSize {
+    /// Floor area (m²).
+    pub area: f32,
+    /// The bounding box's short side in the room's frame (m): how wide the room is.
+    pub width: f32,
+    /// Its long side (m): how long the room is.
+    pub length: f32,
+}
+
+impl FloorSize {
+    /// The size of `plan`.
+    pub fn of(plan: &FloorPlan) -> FloorSize {
+        let [a, b] = RoomFrame::of(plan).sides(plan);
+        let to_decimetre = |v: f64| ((v * 10.0).round() / 10.0) as f32;
+        FloorSize {
+            area: recorded_area(plan.polygon().area()),
+            width: to_decimetre(a.min(b)),
+            length: to_decimetre(a.max(b)),
+        }
+    }
+}
+
+/// Per room type, the floor sizes of the training rooms.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SeenFloors {
@@ -15,7 +44,7 @@ pub struct SeenFloors {
     pub rooms: Vec<SeenFloor>,
 }
 
-/// One room type's floor areas.
+/// One room type's floor sizes.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SeenFloor {
@@ -23,48 +52,87 @@ pub struct SeenFloor {
     pub room: RoomType,
     /// How many training rooms of it there were.
     pub rooms: usize,
-    /// The least and the largest floor area among them (m², to 0.1 as the encoded rooms keep it).
+    /// The least and the largest floor area among them (m², to 0.1 as [`FloorSize`] keeps it).
     pub area: [f32; 2],
+    /// The least and the largest width ([`FloorSize::width`], m); absent in folders recorded
+    /// before it, which then say nothing of widths.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub width: Option<[f32; 2]>,
+    /// The least and the largest length ([`FloorSize::length`], m); absent like `width`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub length: Option<[f32; 2]>,
 }
 
-/// An input's floor outside the training rooms' areas.
+/// What an input's floor has outside the training rooms' sizes: one entry per measure.
 #[derive(Debug, Clone, PartialEq)]
 pub struct UnseenFloor {
     /// The input's room type.
     pub room: RoomType,
-    /// Its floor area (m²).
-    pub area: f32,
-    /// The training rooms' least and largest area (m²).
+    /// Each measure outside the seen range, in the order area, width, length.
+    pub beyond: Vec<Beyond>,
+}
+
+/// One measure of a floor outside the training rooms' range of it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Beyond {
+    /// Which measure.
+    pub measure: FloorMeasure,
+    /// The input's value.
+    pub value: f32,
+    /// The training rooms' least and largest.
     pub seen: [f32; 2],
 }
 
+/// A measure of a floor's size.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FloorMeasure {
+    /// Area (m²).
+    Area,
+    /// Width (m).
+    Width,
+    /// Length (m).
+    Length,
+}
+
 impl SeenFloors {
-    /// The areas of `rooms`: each a room type and its floor area (m²).
-    pub fn of(rooms: impl IntoIterator<Item = (RoomType, f32)>) -> SeenFloors {
+    /// The sizes of `rooms`: each a room type and its floor's size.
+    pub fn of(rooms: impl IntoIterator<Item = (RoomType, FloorSize)>) -> SeenFloors {
+        let widen = |r: [f32; 2], v: f32| [r[0].min(v), r[1].max(v)];
         let mut out = SeenFloors::default();
-        for (room, area) in rooms {
+        for (room, size) in rooms {
             match out.rooms.iter_mut().find(|r| r.room == room) {
                 Some(r) => {
                     r.rooms += 1;
-                    r.area = [r.area[0].min(area), r.area[1].max(area)];
+                    r.area = widen(r.area, size.area);
+                    r.width = r.width.map(|w| widen(w, size.width));
+                    r.length = r.length.map(|l| widen(l, size.length));
                 }
-                None => out.rooms.push(SeenFloor { room, rooms: 1, area: [area, area] }),
+                None => out.rooms.push(SeenFloor {
+                    room,
+                    rooms: 1,
+                    area: [size.area; 2],
+                    width: Some([size.width; 2]),
+                    length: Some([size.length; 2]),
+                }),
             }
         }
         out.rooms.sort_by_key(|r| r.room);
         out
     }
 
-    /// What is wrong with these areas, if anything: an area that is not a finite positive number,
-    /// a least above its largest, no rooms, or a room type twice.
+    /// What is wrong with these sizes, if anything: a range that is not of finite positive numbers
+    /// with its least at most its largest, no rooms, or a room type twice.
     pub fn problem(&self) -> Option<String> {
         for (k, r) in self.rooms.iter().enumerate() {
-            let [least, most] = r.area;
-            if !(least.is_finite() && most.is_finite() && least > 0.0 && least <= most) {
-                return Some(format!(
-                    "seen_floors for {}: area [{least}, {most}] is not a range of m² above 0",
-                    r.room
-                ));
+            let ranges = [("area", Some(r.area), "m²"), ("width", r.width, "m"), ("length", r.length, "m")];
+            for (name, range, unit) in ranges {
+                let Some([least, most]) = range else { continue };
+                if !(least.is_finite() && most.is_finite() && least > 0.0 && least <= most) {
+                    return Some(format!(
+                        "seen_floors for {}: {name} [{least}, {most}] is not a range of {unit} above 0",
+                        r.room
+                    ));
+                }
             }
             if r.rooms == 0 {
                 return Some(format!("seen_floors for {} counts no rooms", r.room));
@@ -76,21 +144,55 @@ impl SeenFloors {
         None
     }
 
-    /// A floor of `area` m² in a room of type `room`, if it is outside the training rooms' areas
-    /// (`None` too when the model saw no room of that type: nothing to compare with).
-    pub fn unseen(&self, room: RoomType, area: f32) -> Option<UnseenFloor> {
-        let seen = self.rooms.iter().find(|r| r.room == room)?.area;
-        (area < seen[0] || area > seen[1]).then_some(UnseenFloor { room, area, seen })
+    /// A floor of `size` in a room of type `room`, if any of its measures is outside the training
+    /// rooms' (`None` too when the model saw no room of that type: nothing to compare with).
+    pub fn unseen(&self, room: RoomType, size: FloorSize) -> Option<UnseenFloor> {
+        let seen = self.rooms.iter().find(|r| r.room == room)?;
+        let measures = [
+            (FloorMeasure::Area, size.area, Some(seen.area)),
+            (FloorMeasure::Width, size.width, seen.width),
+            (FloorMeasure::Length, size.length, seen.length),
+        ];
+        let beyond: Vec<Beyond> = measures
+            .into_iter()
+            .filter_map(|(measure, value, seen)| {
+                let seen = seen?;
+                (value < seen[0] || value > seen[1]).then_some(Beyond { measure, value, seen })
+            })
+            .collect();
+        (!beyond.is_empty()).then_some(UnseenFloor { room, beyond })
+    }
+}
+
+impl std::fmt::Display for Beyond {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let above = self.value > self.seen[1];
+        let ([lo, hi], v) = (self.seen, self.value);
+        match self.measure {
+            FloorMeasure::Area => {
+                let than = if above { "larger" } else { "smaller" };
+                write!(f, "its {v:.1} m² is {than} than any ({lo:.1}–{hi:.1} m²)")
+            }
+            FloorMeasure::Width => {
+                let than = if above { "wider" } else { "narrower" };
+                write!(f, "it is {v:.1} m wide, {than} than any ({lo:.1}–{hi:.1} m)")
+            }
+            FloorMeasure::Length => {
+                let than = if above { "longer" } else { "shorter" };
+                write!(f, "it is {v:.1} m long, {than} than any ({lo:.1}–{hi:.1} m)")
+            }
+        }
     }
 }
 
 impl std::fmt::Display for UnseenFloor {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let than = if self.area > self.seen[1] { "larger than any" } else { "smaller than any" };
+        let parts: Vec<String> = self.beyond.iter().map(Beyond::to_string).collect();
         write!(
             f,
-            "the floor plan's {:.1} m² is {than} of the model's {} training rooms ({:.1}–{:.1} m²): its layouts may be less like real rooms",
-            self.area, self.room, self.seen[0], self.seen[1]
+            "the floor plan is unlike the model's {} training rooms: {}; its layouts may be less like real rooms",
+            self.room,
+            parts.join(", and ")
         )
     }
 }
@@ -99,36 +201,101 @@ impl std::fmt::Display for UnseenFloor {
 mod tests {
     use super::*;
 
+    fn size(area: f32, width: f32, length: f32) -> FloorSize {
+        FloorSize { area, width, length }
+    }
+
     #[test]
-    fn the_areas_are_each_room_types_least_and_largest() {
+    fn a_floors_size_is_its_area_and_sides_in_its_own_frame() {
+        let rect = FloorPlan::rectangle(4.04, 2.96, 2.6);
+        assert_eq!(FloorSize::of(&rect), size(12.0, 3.0, 4.0), "12.0 m² to 0.1; the short side first");
+        // The same rectangle turned by 30° about the origin: the same size, not its world box's.
+        let (s, c) = 30f64.to_radians().sin_cos();
+        let turned = FloorPlan {
+            polygon: rect.polygon.iter().map(|&[x, y]| [c * x - s * y, s * x + c * y]).collect(),
+            height: 2.6,
+        };
+        assert_eq!(FloorSize::of(&turned), size(12.0, 3.0, 4.0));
+        // An L: its bounding box's sides.
+        let l = FloorPlan {
+            polygon: vec![[0.0, 0.0], [5.0, 0.0], [5.0, 2.0], [3.0, 2.0], [3.0, 4.0], [0.0, 4.0]],
+            height: 2.6,
+        };
+        assert_eq!(FloorSize::of(&l), size(16.0, 4.0, 5.0));
+    }
+
+    #[test]
+    fn the_sizes_are_each_room_types_least_and_largest() {
         let seen = SeenFloors::of([
-            (RoomType::Dining, 25.0),
-            (RoomType::Bedroom, 12.0),
-            (RoomType::Dining, 10.0),
-            (RoomType::Dining, 40.0),
+            (RoomType::Dining, size(25.0, 4.0, 6.2)),
+            (RoomType::Bedroom, size(12.0, 3.0, 4.0)),
+            (RoomType::Dining, size(10.0, 2.8, 3.6)),
+            (RoomType::Dining, size(40.0, 5.0, 8.0)),
         ]);
         assert_eq!(
             seen.rooms,
             vec![
-                SeenFloor { room: RoomType::Bedroom, rooms: 1, area: [12.0, 12.0] },
-                SeenFloor { room: RoomType::Dining, rooms: 3, area: [10.0, 40.0] },
+                SeenFloor {
+                    room: RoomType::Bedroom,
+                    rooms: 1,
+                    area: [12.0, 12.0],
+                    width: Some([3.0, 3.0]),
+                    length: Some([4.0, 4.0])
+                },
+                SeenFloor {
+                    room: RoomType::Dining,
+                    rooms: 3,
+                    area: [10.0, 40.0],
+                    width: Some([2.8, 5.0]),
+                    length: Some([3.6, 8.0])
+                },
             ]
         );
-        assert_eq!(seen.unseen(RoomType::Dining, 40.0), None);
-        assert_eq!(seen.unseen(RoomType::Dining, 10.0), None);
-        let big = seen.unseen(RoomType::Dining, 80.0).expect("beyond");
-        assert_eq!(big.seen, [10.0, 40.0]);
+        assert_eq!(seen.unseen(RoomType::Dining, size(40.0, 5.0, 8.0)), None, "the ranges hold their ends");
+        assert_eq!(seen.unseen(RoomType::Dining, size(10.0, 2.8, 3.6)), None);
+        let big = seen.unseen(RoomType::Dining, size(80.0, 8.0, 10.0)).expect("beyond");
+        assert_eq!(big.beyond.len(), 3);
         assert_eq!(
             big.to_string(),
-            "the floor plan's 80.0 m² is larger than any of the model's dining training rooms (10.0–40.0 m²): its layouts may be less like real rooms"
+            "the floor plan is unlike the model's dining training rooms: its 80.0 m² is larger than any (10.0–40.0 m²), and it is 8.0 m wide, wider than any (2.8–5.0 m), and it is 10.0 m long, longer than any (3.6–8.0 m); its layouts may be less like real rooms"
         );
-        assert!(seen.unseen(RoomType::Bedroom, 6.0).expect("below").to_string().contains("smaller than any"));
-        assert_eq!(seen.unseen(RoomType::Living, 500.0), None, "no living rooms seen: nothing to say");
+        // A 2 × 20 m corridor has an area the dining rooms have, and neither their width nor length.
+        let corridor = seen.unseen(RoomType::Dining, size(40.0, 2.0, 20.0)).expect("a corridor");
+        assert_eq!(
+            corridor.to_string(),
+            "the floor plan is unlike the model's dining training rooms: it is 2.0 m wide, narrower than any (2.8–5.0 m), and it is 20.0 m long, longer than any (3.6–8.0 m); its layouts may be less like real rooms"
+        );
+        let small = seen.unseen(RoomType::Bedroom, size(6.0, 2.0, 3.0)).expect("below").to_string();
+        assert!(
+            small.contains("smaller than any") && small.contains("narrower") && small.contains("shorter"),
+            "{small}"
+        );
+        assert_eq!(
+            seen.unseen(RoomType::Living, size(500.0, 20.0, 25.0)),
+            None,
+            "no living rooms seen: nothing to say"
+        );
     }
 
     #[test]
-    fn bad_areas_are_named() {
-        let room = |area: [f32; 2], rooms: usize| SeenFloor { room: RoomType::Dining, rooms, area };
+    fn a_folder_recorded_before_widths_judges_areas_only() {
+        let old: SeenFloors =
+            serde_json::from_str(r#"{"rooms":[{"room":"dining","rooms":3,"area":[10.0,40.0]}]}"#).unwrap();
+        assert_eq!(old.rooms[0].width, None);
+        assert_eq!(old.problem(), None);
+        assert_eq!(old.unseen(RoomType::Dining, size(40.0, 2.0, 20.0)), None, "a corridor it cannot see");
+        assert_eq!(old.unseen(RoomType::Dining, size(80.0, 8.0, 10.0)).unwrap().beyond.len(), 1);
+    }
+
+    #[test]
+    fn bad_sizes_are_named() {
+        let room = |area: [f32; 2], rooms: usize| SeenFloor {
+            room: RoomType::Dining,
+            rooms,
+            area,
+            width: Some([2.8, 5.0]),
+            length: Some([3.6, 8.0]),
+        };
         let problem = |rooms: Vec<SeenFloor>| SeenFloors { rooms }.problem();
         assert_eq!(problem(vec![room([10.0, 40.0], 3)]), None);
         assert_eq!(
@@ -137,6 +304,13 @@ mod tests {
         );
         assert!(problem(vec![room([f32::NAN, 10.0], 3)]).is_some());
         assert!(problem(vec![room([0.0, 10.0], 3)]).is_some());
+        let narrow = SeenFloor { width: Some([5.0, 2.8]), ..room([10.0, 40.0], 3) };
+        assert_eq!(
+            problem(vec![narrow]).as_deref(),
+            Some("seen_floors for dining: width [5, 2.8] is not a range of m above 0")
+        );
+        let endless = SeenFloor { length: Some([3.6, f32::INFINITY]), ..room([10.0, 40.0], 3) };
+        assert!(problem(vec![endless]).unwrap().contains("length"));
         assert_eq!(problem(vec![room([10.0, 40.0], 0)]).as_deref(), Some("seen_floors for dining counts no rooms"));
         assert_eq!(
             problem(vec![room([10.0, 40.0], 3), room([10.0, 40.0], 3)]).as_deref(),
@@ -146,9 +320,13 @@ mod tests {
 
     #[test]
     fn it_reads_back_what_it_writes() {
-        let seen = SeenFloors::of([(RoomType::Living, 15.5), (RoomType::Living, 60.0)]);
+        let seen =
+            SeenFloors::of([(RoomType::Living, size(15.5, 3.1, 5.0)), (RoomType::Living, size(60.0, 6.0, 10.0))]);
         let text = serde_json::to_string(&seen).unwrap();
-        assert_eq!(text, r#"{"rooms":[{"room":"living","rooms":2,"area":[15.5,60.0]}]}"#);
+        assert_eq!(
+            text,
+            r#"{"rooms":[{"room":"living","rooms":2,"area":[15.5,60.0],"width":[3.1,6.0],"length":[5.0,10.0]}]}"#
+        );
         assert_eq!(serde_json::from_str::<SeenFloors>(&text).unwrap(), seen);
     }
 }

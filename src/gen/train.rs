@@ -261,9 +261,9 @@ impl TrainingRooms {
         SeenCounts::of(self.examples.iter().map(|e| (e.make_up.0, e.pieces.as_slice())))
     }
 
-    /// The floor areas these rooms have, as a model trained on them records them.
+    /// The floor sizes these rooms have, as a model trained on them records them.
     pub fn seen_floors(&self) -> SeenFloors {
-        SeenFloors::of(self.examples.iter().map(|e| (e.make_up.0, e.make_up.2)))
+        SeenFloors::of(self.examples.iter().map(|e| (e.make_up.0, e.floor)))
     }
 }
 

@@ -9,7 +9,7 @@
 //! nothing is moved at all. This module only moves coordinates; it decides nothing about a layout.
 
 use super::{FloorPlan, Object, Scene};
-use crate::geom::wrap_angle;
+use crate::geom::{Polygon, wrap_angle};
 use glam::DVec2;
 
 /// Turns smaller than this (rad) are no turn: the plan is treated as square to the axes.
@@ -51,6 +51,14 @@ impl RoomFrame {
     /// `scene` in this frame: its floor plan, people and pieces turned by −angle about the pivot.
     pub fn to_frame(&self, scene: &Scene) -> Scene {
         self.turned(scene, -self.angle)
+    }
+
+    /// The sides of `plan`'s bounding box in this frame (m, along the frame's x then y): for a
+    /// rectangle at any angle, its two sides.
+    pub fn sides(&self, plan: &FloorPlan) -> [f64; 2] {
+        let turned: Vec<DVec2> = plan.polygon.iter().map(|&p| self.turn_point(DVec2::from(p), -self.angle)).collect();
+        let (lo, hi) = Polygon::new(turned).bounds();
+        (hi - lo).to_array()
     }
 
     /// A piece in this frame as it stands in the world.
@@ -104,6 +112,16 @@ mod tests {
 
     fn turned(points: &[[f64; 2]], angle: f64, shift: DVec2) -> Vec<[f64; 2]> {
         points.iter().map(|&p| (DVec2::from_angle(angle).rotate(DVec2::from(p)) + shift).to_array()).collect()
+    }
+
+    #[test]
+    fn a_plans_sides_are_its_own_at_any_turn() {
+        for deg in [0.0_f64, 30.0, -12.5, 90.0, 135.0] {
+            let p = plan(&turned(&l_shape(), deg.to_radians(), DVec2::new(4.0, -2.0)));
+            let [a, b] = RoomFrame::of(&p).sides(&p);
+            let (short, long) = (a.min(b), a.max(b));
+            assert!((short - 4.0).abs() < 1e-9 && (long - 5.0).abs() < 1e-9, "{deg}°: {a} × {b}");
+        }
     }
 
     #[test]

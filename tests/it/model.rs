@@ -5,7 +5,7 @@ use crate::{root, shade_sim, stderr, stdout};
 use shade_sim::data::{SynthConfig, synthesize};
 use shade_sim::generator::train::{LogLine, read_log};
 use shade_sim::generator::{
-    Checkpoint, Engine, Generator, ModelConfig, TrainObserver, TrainOptions, shipped_rooms, train,
+    Checkpoint, Engine, FloorMeasure, Generator, ModelConfig, TrainObserver, TrainOptions, shipped_rooms, train,
 };
 use shade_sim::scene::{RoomType, Scene};
 use std::path::{Path, PathBuf};
@@ -647,10 +647,18 @@ fn a_model_records_the_counts_its_training_rooms_have_and_samples_keep_to_them()
     // Counted by hand from the train split: per category, each count and the rooms that have it.
     let mut want: Vec<std::collections::BTreeMap<u32, u32>> = vec![Default::default(); ckpt.meta.categories.len()];
     let (mut rooms, mut areas) = (0, [f32::INFINITY, 0.0f32]);
+    let (mut widths, mut lengths) = (areas, areas);
+    let widen = |r: [f32; 2], v: f32| [r[0].min(v), r[1].max(v)];
     for f in std::fs::read_dir(data.join("train")).unwrap() {
         let scene = Scene::load(f.unwrap().path()).unwrap();
-        let area = ((scene.floor_plan.polygon().area() * 10.0).round() / 10.0) as f32; // to 0.1 m²
-        (rooms, areas) = (rooms + 1, [areas[0].min(area), areas[1].max(area)]);
+        let to_tenth = |v: f64| ((v * 10.0).round() / 10.0) as f32; // m² and m to 0.1
+        // The procedural plans stand square to the axes: their own frame's sides are the world's.
+        let (lo, hi) = scene.floor_plan.polygon().bounds();
+        let sides = hi - lo;
+        rooms += 1;
+        areas = widen(areas, to_tenth(scene.floor_plan.polygon().area()));
+        widths = widen(widths, to_tenth(sides.min_element()));
+        lengths = widen(lengths, to_tenth(sides.max_element()));
         for (c, &category) in ckpt.meta.categories.iter().enumerate() {
             let n = scene.objects.iter().filter(|o| o.category == category).count() as u32;
             *want[c].entry(n).or_default() += 1;
@@ -660,9 +668,17 @@ fn a_model_records_the_counts_its_training_rooms_have_and_samples_keep_to_them()
     let got: Vec<std::collections::BTreeMap<u32, u32>> =
         room.categories.iter().map(|pairs| pairs.iter().map(|p| (p[0], p[1])).collect()).collect();
     assert_eq!(got, want);
-    // And their floors' least and largest area.
+    // And their floors' least and largest area, width and length.
     let floors = ckpt.meta.seen_floors.clone().expect("seen floors");
-    assert_eq!(floors.rooms, [shade_sim::generator::SeenFloor { room: RoomType::Bedroom, rooms, area: areas }]);
+    let floor = shade_sim::generator::SeenFloor {
+        room: RoomType::Bedroom,
+        rooms,
+        area: areas,
+        width: Some(widths),
+        length: Some(lengths),
+    };
+    assert_eq!(floors.rooms, [floor]);
+    assert!(widths[0] < widths[1] && lengths[0] < lengths[1], "the rooms differ: {widths:?} {lengths:?}");
 
     // Were every training room to have one wardrobe, an empty room (no one in it, so no piece is
     // held for anyone) would get one in every sample; this two-step model's own samples are empty.
@@ -987,14 +1003,23 @@ fn contact_spans_beyond_the_models_slots_are_named_before_sampling() {
 
 #[test]
 fn a_floor_unlike_any_training_room_is_named_before_sampling() {
-    // The shipped dining model's training rooms are 10–40 m² (models/MODEL_CARD.md).
+    // The shipped dining model's training rooms are 10–40 m², 2.5–7.4 m wide and 3.2–9.4 m long
+    // (models/MODEL_CARD.md).
     let mut scene = Scene::load(root().join("tests/inputs/dinner_for_three.json")).unwrap();
     let dining = Generator::new(shade_sim::generator::shipped_model(RoomType::Dining).unwrap());
     assert_eq!(dining.unseen_floor(&scene), None, "4.2 × 3.6 m is a room the model saw");
     assert!(shade_sim::pipeline::input_notes(&dining, &scene).is_empty());
+    // An 11 × 3.6 m hall: an area the model saw (39.6 m²), a length it did not.
+    scene.floor_plan.polygon = vec![[0.0, 0.0], [11.0, 0.0], [11.0, 3.6], [0.0, 3.6]];
+    let unseen = dining.unseen_floor(&scene).expect("11 m is longer than any");
+    let beyond: Vec<_> = unseen.beyond.iter().map(|b| (b.measure, b.value, b.seen)).collect();
+    assert_eq!(beyond, [(FloorMeasure::Length, 11.0, [3.2, 9.4])]);
+    // A 10 × 8 m hall: twice the largest area, wider and longer than any.
     scene.floor_plan.polygon = vec![[-3.0, -2.0], [7.0, -2.0], [7.0, 6.0], [-3.0, 6.0]];
     let unseen = dining.unseen_floor(&scene).expect("80 m² is twice the largest");
-    assert_eq!((unseen.area, unseen.seen), (80.0, [10.0, 40.0]));
+    let measures: Vec<_> = unseen.beyond.iter().map(|b| b.measure).collect();
+    assert_eq!(measures, [FloorMeasure::Area, FloorMeasure::Width, FloorMeasure::Length]);
+    assert_eq!((unseen.beyond[0].value, unseen.beyond[0].seen), (80.0, [10.0, 40.0]));
     let dir = tempfile::tempdir().unwrap();
     let input = dir.path().join("hall.json");
     scene.save(&input).unwrap();
@@ -1002,8 +1027,7 @@ fn a_floor_unlike_any_training_room_is_named_before_sampling() {
     let args = ["--out", out.to_str().unwrap(), "--no-repair", "--guidance", "none"];
     let o = shade_sim(&[&["generate", "--input", input.to_str().unwrap()][..], &args].concat());
     assert!(o.status.success(), "{}", stderr(&o));
-    let said =
-        "hall.json: the floor plan's 80.0 m² is larger than any of the model's dining training rooms (10.0–40.0 m²)";
+    let said = "hall.json: the floor plan is unlike the model's dining training rooms: its 80.0 m² is larger than any (10.0–40.0 m²), and it is 8.0 m wide, wider than any (2.5–7.4 m), and it is 10.0 m long, longer than any (3.2–9.4 m); its layouts may be less like real rooms";
     assert_eq!(stderr(&o).matches(said).count(), 1, "{}", stderr(&o));
     // A model folder that does not record its rooms' floors says nothing of them.
     let mut unrecorded = shade_sim::generator::shipped_model(RoomType::Dining).unwrap();
