@@ -45,6 +45,21 @@ impl RoomWindow {
         window
     }
 
+    /// This window moved along each axis as little as keeps every point of `focus` (a bounding
+    /// box) within `reach` of its centre; centred on `focus` along an axis on which it spans more
+    /// than twice `reach`. Unmoved when `focus` is within reach already, or `None`.
+    pub fn reaching(mut self, focus: Option<(DVec2, DVec2)>, reach: f64) -> RoomWindow {
+        let Some((lo, hi)) = focus else { return self };
+        for k in 0..2 {
+            self.center[k] = if hi[k] - lo[k] > 2.0 * reach {
+                (lo[k] + hi[k]) * 0.5
+            } else {
+                self.center[k].clamp(hi[k] - reach, lo[k] + reach)
+            };
+        }
+        self
+    }
+
     /// Side of one pixel in metres.
     pub fn pixel(&self) -> f64 {
         self.side / RES as f64
@@ -218,6 +233,23 @@ mod tests {
         assert_eq!(RoomWindow::around_focus(6.2, &rect(20.0, 4.0), middle).center, DVec2::new(10.5, 2.0));
         // Nobody to keep in view: the plan's centre.
         assert_eq!(RoomWindow::around_focus(6.2, &rect(20.0, 4.0), None).center, DVec2::new(10.0, 2.0));
+    }
+
+    #[test]
+    fn a_window_moves_as_little_as_keeps_its_focus_within_reach() {
+        let w = RoomWindow { center: DVec2::new(6.2, 2.0), side: 12.4 };
+        // A seat 0.6 m from the west wall, 5.6 m from the centre: the window moves 0.36 m west
+        // along x, not at all along y.
+        let seat = Some((DVec2::new(0.6, 1.6), DVec2::new(0.6, 1.6)));
+        let moved = w.reaching(seat, 5.24);
+        assert!((moved.center - DVec2::new(5.84, 2.0)).abs().max_element() < 1e-12, "{}", moved.center);
+        assert_eq!(moved.side, 12.4);
+        // Within reach already, or nobody: unmoved.
+        assert_eq!(w.reaching(Some((DVec2::new(1.0, 0.5), DVec2::new(11.0, 3.5))), 5.24), w);
+        assert_eq!(w.reaching(None, 5.24), w);
+        // People spanning more than twice the reach: centred on them.
+        let wide = w.reaching(Some((DVec2::new(0.0, 1.0), DVec2::new(11.0, 3.0))), 5.24);
+        assert_eq!(wide.center, DVec2::new(5.5, 2.0));
     }
 
     #[test]

@@ -294,6 +294,18 @@ impl RoomType {
         }
     }
 
+    /// How far from the room window's centre the generator places a piece's centre, in metres
+    /// along each axis: the procedural training rooms' extreme (their datasets' centre bounds,
+    /// 2.77 / 5.245 / 4.255 m) rounded down to the centimetre. The window keeps the people in
+    /// contact within it ([`super::Scene::room_window`]), or no piece could reach under them.
+    pub fn reach(self) -> f64 {
+        match self {
+            RoomType::Bedroom => 2.77,
+            RoomType::Living => 5.24,
+            RoomType::Dining => 4.25,
+        }
+    }
+
     /// The name used in files.
     pub fn name(self) -> &'static str {
         match self {

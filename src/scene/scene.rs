@@ -31,12 +31,29 @@ impl Scene {
     /// ([`crate::geom::RoomWindow::around_focus`]). Where everyone together spans more than the
     /// window, the people in contact (sitting, lying, touching) come first: the pieces under them
     /// are the model's to place, and a walker's path is kept clear by guidance and repair as well.
+    /// Last, the window moves as little as keeps the people in contact (their pelvis in every
+    /// frame of a contact span) within the room type's [`RoomType::reach`] of its centre: in a
+    /// plan longer than the training rooms the window would otherwise leave a person near an end
+    /// wall where no piece's centre can go. In the training rooms it never moves
+    /// (a test holds it).
     pub fn room_window(&self) -> crate::geom::RoomWindow {
         let side = self.room_type.window_side();
         let everyone = self.people_bounds();
         let spans_more = everyone.is_some_and(|(lo, hi)| (hi - lo).max_element() > side);
         let focus = if spans_more { self.contact_bounds().or(everyone) } else { everyone };
         crate::geom::RoomWindow::around_focus(side, &self.floor_plan.polygon(), focus)
+            .reaching(self.contact_pelvis_bounds(), self.room_type.reach())
+    }
+
+    /// The horizontal bounding box of the pelvis in every frame of a contact span (`None` without
+    /// one).
+    pub fn contact_pelvis_bounds(&self) -> Option<(glam::DVec2, glam::DVec2)> {
+        let pelvis = self.humans.iter().flat_map(|h| {
+            let j = h.skeleton.joint("pelvis");
+            let frames = h.contact_spans().flat_map(move |s| h.frames.get(s.start..s.end).unwrap_or(&[]));
+            frames.filter_map(move |f| f.get(j?))
+        });
+        bounds(pelvis)
     }
 
     /// The horizontal bounding box of every joint of every person in every frame (`None` without
