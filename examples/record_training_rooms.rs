@@ -1,9 +1,10 @@
 //! Records in a model folder trained before `seen_counts` and `seen_floors` existed what its
 //! training rooms have, as `train` now records it: the counts per category
 //! (`CheckpointMeta::seen_counts`), so that sampling keeps its layouts to counts the data has, and
-//! the floor sizes (`CheckpointMeta::seen_floors`: areas, widths and lengths), so that `generate` names an input's floor
-//! unlike any of them; the rest of `config.json` is written as `train` writes it now (fields added
-//! since the model was trained, at their defaults, which mean what their absence meant). The data
+//! the floor sizes (`CheckpointMeta::seen_floors`: areas, widths and lengths), so that `generate`
+//! names an input's floor unlike any of them; the rest of `config.json` is written as `train`
+//! writes it now (fields added since the model was trained, at their defaults, which mean what
+//! their absence meant). The data
 //! must be the model's own: as many training rooms as `config.json` recorded at training, or
 //! nothing is written. (Not its hash: that covers the datasets' `stats.json`, whose commands name
 //! this machine's paths and flags, and data made again elsewhere, room for room the same, hashes
