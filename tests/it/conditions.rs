@@ -197,6 +197,19 @@ fn the_window_keeps_people_in_contact_within_reach_and_the_training_rooms_as_the
 }
 
 #[test]
+fn every_shipped_model_reaches_as_far_as_its_room_type_says() {
+    // The window keeps people within `RoomType::reach` of its centre on the promise that the model
+    // can put a piece's centre that far; each shipped model's centre bounds keep it (to the cm).
+    for room in shade_sim::generator::shipped_rooms() {
+        let bounds = shade_sim::generator::shipped_model(room).unwrap().meta.bounds;
+        for k in 0..2 {
+            let reach = bounds.center_max[k].min(-bounds.center_min[k]);
+            assert!(reach >= room.reach() && reach < room.reach() + 0.01, "{room}: {reach} against {}", room.reach());
+        }
+    }
+}
+
+#[test]
 fn a_body_resting_on_the_floor_needs_no_piece_and_keeps_its_floor_free() {
     let body = Body::default();
     let lying = |surface: f64| {
