@@ -76,7 +76,12 @@ pub fn contact_kinds(cond: &Conditions) -> ContactKinds {
 /// A floor area (m²) as a model records its training rooms' (here and in
 /// [`super::SeenFloors`]): to 0.1 m².
 pub fn recorded_area(area: f64) -> f32 {
-    ((area * 10.0).round() / 10.0) as f32
+    to_tenth(area)
+}
+
+/// A floor measure as a model records it: to a tenth of its unit (m² or m).
+pub fn to_tenth(v: f64) -> f32 {
+    ((v * 10.0).round() / 10.0) as f32
 }
 
 impl PriorRoom {

@@ -7,7 +7,7 @@
 //! It knows sizes only, not the plans' shapes (an L and a rectangle of one size are alike to it),
 //! and changes nothing sampled.
 
-use super::count_prior::recorded_area;
+use super::count_prior::{recorded_area, to_tenth};
 use crate::scene::{FloorPlan, RoomFrame, RoomType};
 use serde::{Deserialize, Serialize};
 
@@ -27,12 +27,7 @@ impl FloorSize {
     /// The size of `plan`.
     pub fn of(plan: &FloorPlan) -> FloorSize {
         let [a, b] = RoomFrame::of(plan).sides(plan);
-        let to_decimetre = |v: f64| ((v * 10.0).round() / 10.0) as f32;
-        FloorSize {
-            area: recorded_area(plan.polygon().area()),
-            width: to_decimetre(a.min(b)),
-            length: to_decimetre(a.max(b)),
-        }
+        FloorSize { area: recorded_area(plan.polygon().area()), width: to_tenth(a.min(b)), length: to_tenth(a.max(b)) }
     }
 }
 
@@ -232,23 +227,18 @@ mod tests {
             (RoomType::Dining, size(10.0, 2.8, 3.6)),
             (RoomType::Dining, size(40.0, 5.0, 8.0)),
         ]);
+        let floor = |room, rooms, area, width, length| SeenFloor {
+            room,
+            rooms,
+            area,
+            width: Some(width),
+            length: Some(length),
+        };
         assert_eq!(
             seen.rooms,
             vec![
-                SeenFloor {
-                    room: RoomType::Bedroom,
-                    rooms: 1,
-                    area: [12.0, 12.0],
-                    width: Some([3.0, 3.0]),
-                    length: Some([4.0, 4.0])
-                },
-                SeenFloor {
-                    room: RoomType::Dining,
-                    rooms: 3,
-                    area: [10.0, 40.0],
-                    width: Some([2.8, 5.0]),
-                    length: Some([3.6, 8.0])
-                },
+                floor(RoomType::Bedroom, 1, [12.0, 12.0], [3.0, 3.0], [4.0, 4.0]),
+                floor(RoomType::Dining, 3, [10.0, 40.0], [2.8, 5.0], [3.6, 8.0]),
             ]
         );
         assert_eq!(seen.unseen(RoomType::Dining, size(40.0, 5.0, 8.0)), None, "the ranges hold their ends");

@@ -132,6 +132,11 @@ impl Human {
         self.actions.iter().filter(|s| s.action.is_contact())
     }
 
+    /// The joint positions of every frame of a contact span, span by span.
+    pub fn contact_frames(&self) -> impl Iterator<Item = &Vec<[f64; 3]>> + '_ {
+        self.contact_spans().flat_map(|s| self.frames.get(s.start..s.end).unwrap_or(&[]))
+    }
+
     /// Frames labelled walk or stand.
     pub fn free_space_frames(&self) -> impl Iterator<Item = usize> + '_ {
         self.actions.iter().filter(|s| s.action.is_free_space()).flat_map(|s| s.start..s.end)

@@ -50,8 +50,7 @@ impl Scene {
     pub fn contact_pelvis_bounds(&self) -> Option<(glam::DVec2, glam::DVec2)> {
         let pelvis = self.humans.iter().flat_map(|h| {
             let j = h.skeleton.joint("pelvis");
-            let frames = h.contact_spans().flat_map(move |s| h.frames.get(s.start..s.end).unwrap_or(&[]));
-            frames.filter_map(move |f| f.get(j?))
+            h.contact_frames().filter_map(move |f| f.get(j?))
         });
         bounds(pelvis)
     }
@@ -65,11 +64,7 @@ impl Scene {
     /// The horizontal bounding box of every joint in every frame of a contact span (sit, lie,
     /// touch; `None` without one).
     pub fn contact_bounds(&self) -> Option<(glam::DVec2, glam::DVec2)> {
-        let spans = self
-            .humans
-            .iter()
-            .flat_map(|h| h.contact_spans().map(move |s| h.frames.get(s.start..s.end).unwrap_or(&[])));
-        bounds(spans.flat_map(|frames| frames.iter().flatten()))
+        bounds(self.humans.iter().flat_map(|h| h.contact_frames().flatten()))
     }
 
     /// An empty scene of `room_type` over `floor_plan`.
