@@ -2,8 +2,8 @@
 # The model card's test-split metrics: one sample per test input (seed 0) with the shipped models
 # (embedded in the binary), unguided, with the three spatial terms (`all`) and with the default
 # pipeline (`all` guidance and repair: the `all` samples repaired, which `shade-sim repair` reproduces exactly),
-# and `shade-sim eval` (with physics) against the calibrated dataset (with DATA_DIR/<room>-extra, the
-# second draw the model also trained on, as `--extra-data` where it exists).
+# and `shade-sim eval` (with physics) against the calibrated dataset (with DATA_DIR/<room>-extra and
+# <room>-extra2, the further draws the model also trained on, as `--extra-data` where they exist).
 # Usage: bash scripts/eval_models.sh [DATA_DIR] [OUT_DIR] [ROOMS…]   (defaults: data out/eval, all rooms)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,7 +26,9 @@ for room in "${rooms[@]}"; do
     echo "## $room"
     # The second draw the model also trained on (models/MODEL_CARD.md) joins the counts a real room has.
     extra=()
-    [ -d "$data/$room-extra" ] && extra=(--extra-data "$data/$room-extra")
+    for draw in "$data/$room-extra" "$data/$room-extra2"; do
+        [ -d "$draw" ] && extra+=(--extra-data "$draw")
+    done
     $bin --no-progress eval --pred "$out/$room/none" "$out/$room/all" "$out/$room/all+repair" --ref "$data/$room" \
         "${extra[@]}" --out "$out/$room.json"
 done

