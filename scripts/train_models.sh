@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # Reproduces the shipped models (models/MODEL_CARD.md): the clean calibrated datasets at SHADE's
 # sizes (`--require-clean`: every room passes `check`), second draws of 13,650 bedrooms, 8,961
-# living rooms and 7,647 dining rooms (seed 1) and thirds of 27,300 bedrooms and 17,922 living
-# rooms (seed 2) that join their training splits (`--extra-data`; val and test stay the first
+# living rooms and 7,647 dining rooms (seed 1) and thirds of 27,300 bedrooms, 17,922 living
+# rooms and 20,000 dining rooms (seed 2) that join their training splits (`--extra-data`; val and test stay the first
 # draw's), then the four trainings with rare categories weighed up (--category-balance 0.25), one
 # after another, each on every core: bedrooms 120,000 steps (about 60 minutes alone on a 2-core
 # machine, plus 18 for the extra rooms), living rooms 90,000 (about 55, plus 12) and the living
-# rooms' low-noise expert 16,000 (about 12), dining rooms 36,000 (about 24, plus 3).
+# rooms' low-noise expert 16,000 (about 12), dining rooms 90,000 (about 57, plus 15).
 # Usage: bash scripts/train_models.sh [DATA_DIR] [MODELS_DIR]   (defaults: data, models)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,7 +24,7 @@ for spec in bedroom:5689 living:2987 dining:2549; do
     $bin --no-progress -q calibrate --data "$data/$room-raw" --out "$data/$room" --require-clean "${overlap[@]}"
 done
 # DRAW:ROOM:SCENES:SEED: more rooms of ROOM, drawn with SEED, in DATA_DIR/ROOM-DRAW.
-for spec in extra:bedroom:13650:1 extra:living:8961:1 extra:dining:7647:1 extra2:bedroom:27300:2 extra2:living:17922:2; do
+for spec in extra:bedroom:13650:1 extra:living:8961:1 extra:dining:7647:1 extra2:bedroom:27300:2 extra2:living:17922:2 extra2:dining:20000:2; do
     IFS=: read -r draw room n seed <<< "$spec"
     [ -f "$data/$room-$draw/stats.json" ] && continue
     $bin --no-progress -q synth --room "$room" --scenes "$n" --seed "$seed" --out "$data/$room-$draw-raw" --require-clean
@@ -57,6 +57,8 @@ train living:living-expert 16000 0.25 --extra-data "$data/living-extra" --anchor
     --prediction v --expert-below 10
 # Dining: the v model of the bedrooms on both draws (docs/RESULTS.md, "The dining v model on both draws").
 # Its default sampler, DDIM's η 1.5 on the geometry (docs/RESULTS.md, "Fresh noise on the dining
-# rooms' geometry"), goes into its config.json.
-train dining 36000 0.25 --extra-data "$data/dining-extra" --anchored-yaw box --wall-features false \
+# rooms' geometry"), goes into its config.json. Its rooms and steps scaled as the living rooms'
+# were: 29,686 rooms, 90,000 steps (docs/RESULTS.md, "The dining model on a third draw, 90,000 steps").
+train dining 90000 0.25 --extra-data "$data/dining-extra" --extra-data "$data/dining-extra2" \
+    --anchored-yaw box --wall-features false \
     --prediction v --schedule log_snr --min-snr 5 --min-snr-floor 1 --geometry-eta 1.5
