@@ -2,8 +2,8 @@
 # Reproduces the shipped models (models/MODEL_CARD.md): the clean calibrated datasets at SHADE's
 # sizes (`--require-clean`: every room passes `check`), second draws of 13,650 bedrooms, 8,961
 # living rooms and 7,647 dining rooms (seed 1) and thirds of 27,300 bedrooms, 17,922 living
-# rooms and 20,000 dining rooms (seed 2) that join their training splits (`--extra-data`; val and test stay the first
-# draw's), then the four trainings with rare categories weighed up (--category-balance 0.25), one
+# rooms and 20,000 dining rooms (seed 2) that join their training splits (`--extra-data`; val and
+# test stay the first draw's), then the four trainings with rare categories weighed up (--category-balance 0.25), one
 # after another, each on every core: bedrooms 120,000 steps (about 60 minutes alone on a 2-core
 # machine, plus 18 for the extra rooms), living rooms 90,000 (about 55, plus 12) and the living
 # rooms' low-noise expert 16,000 (about 12), dining rooms 90,000 (about 57, plus 15).
@@ -55,7 +55,7 @@ train living 90000 0.25 --extra-data "$data/living-extra" --extra-data "$data/li
 # which `generate` hands those steps (docs/RESULTS.md, "Where the judge's rooms are lost").
 train living:living-expert 16000 0.25 --extra-data "$data/living-extra" --anchored-yaw box --wall-features false \
     --prediction v --expert-below 10
-# Dining: the v model of the bedrooms on both draws (docs/RESULTS.md, "The dining v model on both draws").
+# Dining: the v model of the bedrooms (docs/RESULTS.md, "The dining v model on both draws").
 # Its default sampler, DDIM's η 1.5 on the geometry (docs/RESULTS.md, "Fresh noise on the dining
 # rooms' geometry"), goes into its config.json. Its rooms and steps scaled as the living rooms'
 # were: 29,686 rooms, 90,000 steps (docs/RESULTS.md, "The dining model on a third draw, 90,000 steps").
