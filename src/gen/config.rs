@@ -279,37 +279,20 @@ impl ModelConfig {
     /// value per step, and a chain of 10¹² steps would allocate terabytes.
     pub const MAX_DIFFUSION_STEPS: usize = 10_000;
 
-    /// A tiny model for tests.
+    /// A tiny model for tests: `small`'s settings at a fraction of its size, with the relation
+    /// bias on so that tests exercise it.
     pub fn tiny(room_type: RoomType) -> ModelConfig {
         ModelConfig {
-            room_type,
             d_model: 32,
             blocks: 2,
             heads: 2,
             mlp_ratio: 2,
             pointnet_width: 16,
             max_contacts: 4,
-            contact_tokens: true,
             floor_points: 32,
             free_points: 16,
-            diffusion_steps: 200,
-            anchor_scale: Self::ANCHOR_SCALE,
-            anchored_yaw: AnchoredYaw::World,
             relation_bias: true,
-            relation_values: false,
-            wall_features: true,
-            fourier_bands: 0,
-            gap_bounds: None,
-            slot_roles: false,
-            world_features: false,
-            prediction: Prediction::X0,
-            schedule: NoiseSchedule::Linear,
-            self_condition: false,
-            min_snr: None,
-            min_snr_floor: None,
-            room_token: false,
-            count_condition: false,
-            expert_below: None,
+            ..Self::small(room_type)
         }
     }
 
