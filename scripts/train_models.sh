@@ -3,10 +3,11 @@
 # sizes (`--require-clean`: every room passes `check`), second draws of 13,650 bedrooms, 8,961
 # living rooms and 7,647 dining rooms (seed 1) and thirds of 27,300 bedrooms, 17,922 living
 # rooms and 20,000 dining rooms (seed 2) that join their training splits (`--extra-data`; val and
-# test stay the first draw's), then the four trainings with rare categories weighed up (--category-balance 0.25), one
-# after another, each on every core: bedrooms 120,000 steps (about 60 minutes alone on a 2-core
-# machine, plus 18 for the extra rooms), living rooms 90,000 (about 55, plus 12) and the living
-# rooms' low-noise expert 16,000 (about 12), dining rooms 140,000 (about 98, plus 15).
+# test stay the first draw's), then the four trainings with rare categories weighed up
+# (--category-balance 0.25), one after another, each on every core: bedrooms 120,000 steps
+# (about 60 minutes alone on a 2-core machine, plus 18 for the extra rooms), living rooms 90,000
+# (about 55, plus 12) and the living rooms' low-noise expert 16,000 (about 12), dining rooms
+# 140,000 (about 98, plus 15).
 # Usage: bash scripts/train_models.sh [DATA_DIR] [MODELS_DIR]   (defaults: data, models)
 set -euo pipefail
 cd "$(dirname "$0")/.."
