@@ -4,8 +4,8 @@
 # living rooms and 7,647 dining rooms (seed 1) and thirds of 27,300 bedrooms, 17,922 living
 # rooms and 20,000 dining rooms (seed 2) that join their training splits (`--extra-data`; val and
 # test stay the first draw's), then the four trainings with rare categories weighed up
-# (--category-balance 0.25), one after another, each on every core: bedrooms 120,000 steps
-# (about 60 minutes alone on a 2-core machine, plus 18 for the extra rooms), living rooms 90,000
+# (--category-balance 0.25), one after another, each on every core: bedrooms 240,000 steps
+# (about 110 minutes alone on a 2-core machine, plus 13 for the extra rooms), living rooms 90,000
 # (about 55, plus 12) and the living rooms' low-noise expert 16,000 (about 12), dining rooms
 # 140,000 (about 98, plus 15).
 # Usage: bash scripts/train_models.sh [DATA_DIR] [MODELS_DIR]   (defaults: data, models)
@@ -41,9 +41,10 @@ train() {
 # Ten times the rooms: the 4,551 of the first draw alone overfit by 36,000 steps, and with them
 # B 0.5 drew rare categories at 2–6× their share (docs/RESULTS.md, "Four ways to a more precise
 # bedroom model"); 2.5 times the rooms and steps of the model before (docs/RESULTS.md, "Ten times
-# the rooms"). v-prediction on the log-SNR schedule with Min-SNR-5 floored at 1 (docs/RESULTS.md,
-# "A floor under Min-SNR").
-train bedroom 120000 0.25 --extra-data "$data/bedroom-extra" --extra-data "$data/bedroom-extra2" \
+# the rooms"), then twice the steps on them (docs/RESULTS.md, "The bedroom model for 240,000 steps").
+# v-prediction on the log-SNR schedule with Min-SNR-5 floored at 1 (docs/RESULTS.md, "A floor under
+# Min-SNR").
+train bedroom 240000 0.25 --extra-data "$data/bedroom-extra" --extra-data "$data/bedroom-extra2" \
     --prediction v --schedule log_snr --min-snr 5 --min-snr-floor 1
 # Living and dining rooms keep the earlier preset's yaw and no wall distances: the new preset
 # scored worse on their val splits (docs/RESULTS.md). The living model stays an x0 one: its v
