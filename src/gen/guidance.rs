@@ -124,7 +124,10 @@ pub struct GuidanceConfig {
     pub anchored_mobility: f64,
     /// Share of its step a piece's width, depth and height take (1 = as its centre and yaw, 0 =
     /// the sizes the model drew are kept). Guided sizes shrink where the terms push pieces apart:
-    /// a piece smaller by a centimetre overlaps less, just as one moved by a centimetre does.
+    /// a piece smaller by a centimetre overlaps less, just as one moved by a centimetre does. 0.3
+    /// in [`all`](Self::all): the log-SNR chains guide at 84 steps, and at 1 the shrinking left a
+    /// fifth of the pieces at sizes the data never draws (docs/RESULTS.md, "Sizes the guidance
+    /// keeps").
     #[serde(default = "GuidanceConfig::default_size_mobility")]
     pub size_mobility: f64,
     /// Weight of J_q (ours): pieces turned from the walls' directions, Σ (1 − cos 4Δ) / 4 over
@@ -188,7 +191,7 @@ impl GuidanceConfig {
             until_step: 20,
             every: 1,
             anchored_mobility: 1.0,
-            size_mobility: 1.0,
+            size_mobility: 0.3,
             square: 1.0,
             phys: 0.0,
             phys_until: 20,
@@ -227,6 +230,7 @@ impl GuidanceConfig {
             support: 0.0,
             until_step: 100,
             anchored_mobility: 0.0,
+            size_mobility: 1.0,
             square: 0.0,
             real_sizes: None,
             fold_anchored: None,
