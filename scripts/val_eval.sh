@@ -6,7 +6,7 @@
 # DATA-extra2 where they exist. Writes OUT/alone, OUT/repaired and OUT/eval.json; prints the table.
 # Usage: bash scripts/val_eval.sh MODEL_DIR DATA_DIR OUT_DIR [SEED] [GENERATE_ARGS…]
 #   e.g. bash scripts/val_eval.sh models/bedroom data/bedroom out/val/bedroom 0
-#   GENERATE_ARGS go to `generate` as they are (`--expert models/living-expert`, `--eta 1.5`).
+#   GENERATE_ARGS go to `generate` as they are (`--eta 1.5 --eta-geometry-only`, `--guidance-config FILE`, `--expert DIR`).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 model="$1"
