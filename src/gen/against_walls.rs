@@ -13,9 +13,9 @@
 //! corners at the gap is the data's rule: the piece's back flush and parallel to the wall. It only
 //! pulls (a corner nearer than `WALL_GAP` is J_b's), moves and turns; it does not resize.
 //!
-//! It is quadratic, and weighted low, because a guidance step moves a piece by γ × (half the
-//! decoding range)² ≈ 1.2 m per unit of gradient: a term whose slope does not fall to zero at its
-//! target overshoots it every step (weighted 1 with a 5 cm Huber zone, it jolted wall pieces
+//! It is quadratic, and weighted low, because a guidance step moves a piece by γ × ℓ² ≈ 0.77 m
+//! per unit of gradient ([`CENTRE_STEP_LENGTH`](super::guidance::CENTRE_STEP_LENGTH) ℓ): a term
+//! whose slope does not fall to zero at its target overshoots it every step (weighted 1 with a 5 cm Huber zone, it jolted wall pieces
 //! into J_b's margin and back, and the two together shrank them: val bedrooms' cabinets
 //! 0.45 → 0.25 m deep). Not here: the weights and steps ([`super::guidance`]).
 

@@ -105,7 +105,9 @@ pub struct GuidanceConfig {
     /// [`super::bodies`]).
     #[serde(default)]
     pub support: f64,
-    /// Step size γ (token units per unit of weighted J gradient).
+    /// Step size γ: per unit of weighted J gradient, a piece's centre moves γ · ℓ² metres (ℓ =
+    /// [`CENTRE_STEP_LENGTH`], the same in every model), its sizes γ token units (scaled by
+    /// `size_mobility`), its yaw about γ radians.
     pub scale: f64,
     /// Guide only at steps t < `until_step` (steps count down from T − 1 to 0) of the linear
     /// schedule; under another schedule, at the steps with less noise than the linear schedule's
@@ -971,13 +973,23 @@ fn capped(step: &[f64; 8], scale: f64, cap: f64, bounds: &Bounds) -> f64 {
     if moved > cap { cap / moved } else { 1.0 }
 }
 
-/// ∂J/∂token (first 8 entries: centre, size, cos, sin) from ∂J/∂(world parameters).
+/// A guidance step moves a piece's centre γ · ℓ² metres per unit of weighted gradient (m⁻¹), ℓ this
+/// length (m), in every model. ℓ is the bedroom model's decoding half-range, with which γ and the
+/// terms' weights were tuned. It used to be each model's own half-range, so the same γ moved a
+/// living room's pieces (5.2 m) 3.6 times as far: J_w then overshot the wall and J_b pushed the
+/// piece back 3 cm, turn about, and half the wall pieces ended 8 cm from their wall instead of 5
+/// (docs/RESULTS.md, "One step length for every model").
+pub const CENTRE_STEP_LENGTH: f64 = 2.77;
+
+/// The token step per unit of γ (first 8 entries: centre, size, cos, sin) from ∂J/∂(world
+/// parameters): ∂J/∂token for the sizes and the yaw; for the centre, the move of γ · ℓ² metres per
+/// unit of gradient ([`CENTRE_STEP_LENGTH`]) in token units, whatever the model's decoding range.
 /// Heights are decoded from the size (floor or ceiling), so ∂J/∂cz is not passed on.
 fn token_gradient(t: &[f32], g: &ObjectGradient, bounds: &Bounds) -> [f64; 8] {
     let half = |lo: f64, hi: f64| (hi - lo) * 0.5;
     let mut out = [0.0; 8];
     for k in 0..2 {
-        out[k] = g[k] * half(bounds.center_min[k], bounds.center_max[k]);
+        out[k] = g[k] * CENTRE_STEP_LENGTH.powi(2) / half(bounds.center_min[k], bounds.center_max[k]);
     }
     for k in 0..3 {
         out[3 + k] = g[3 + k] * half(bounds.size_min[k], bounds.size_max[k]);
@@ -1525,5 +1537,57 @@ mod batch_tests {
         let mut none = SpatialGuidance::new(GuidanceConfig { contact: 0.0, ..only_contact }, &cfg, &bounds, &[&scene]);
         let kept = none.guide(&x0, 0).unwrap().flatten_all().unwrap().to_vec1::<f32>().unwrap();
         assert!((shortfall(&kept) - before).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_wall_piece_is_drawn_back_to_the_data_s_gap_whatever_the_model_s_decoding_range() {
+        // A bedroom's wall pieces alone, each moved out from its wall by 1–7 cm; the wall terms
+        // alone guide them, under the bedroom's decoding range and under one as wide as a living
+        // room model's (±5.245 m), where a step of γ token units used to move a piece 3.6 times as
+        // far: J_w overshot the gap, J_b pushed the piece back 3 cm, and it ended 8 cm out.
+        let mut scene = generate_room(RoomType::Bedroom, 2, 1, false).scene;
+        scene.objects.retain(|o| crate::data::stands_against_wall(o.category));
+        assert!(scene.objects.len() >= 2, "a bed and a cabinet or more");
+        let cfg = ModelConfig { anchor_scale: 0.0, ..ModelConfig::tiny(RoomType::Bedroom) };
+        let mut stats = SplitStats::default();
+        stats.add(&scene);
+        let own = Bounds::from_stats(&stats);
+        let wide = Bounds {
+            center_min: [-5.245, -5.245, own.center_min[2]],
+            center_max: [5.245, 5.245, own.center_max[2]],
+            ..own.clone()
+        };
+        let walls =
+            GuidanceConfig { motion: 0.0, object: 0.0, body: 0.0, contact: 0.0, support: 0.0, ..GuidanceConfig::all() };
+        for bounds in [&own, &wide] {
+            for offset in [0.01, 0.029, 0.045, 0.07] {
+                let mut moved = scene.clone();
+                for o in &mut moved.objects {
+                    let (_, ay) = o.obox().axes();
+                    o.center[0] += ay.x * offset;
+                    o.center[1] += ay.y * offset;
+                }
+                let masks = SceneMasks::of(&moved);
+                let (tok, _) = tokens::encode(&moved, masks.window.center, &[], bounds, &cfg);
+                let x0 = Tensor::from_vec(tok, (1, cfg.slots(), cfg.token_dim()), &candle_core::Device::Cpu).unwrap();
+                let mut g = SpatialGuidance::new(walls.clone(), &cfg, bounds, &[&moved]);
+                let out = g.guide(&x0, 0).unwrap().flatten_all().unwrap().to_vec1::<f32>().unwrap();
+                let guided = tokens::decode(&out, masks.window.center, moved.floor_plan.height, bounds, &cfg);
+                assert_eq!(guided.len(), scene.objects.len());
+                // Each piece back where the data stands it, its back WALL_GAP from its wall.
+                for o in &guided {
+                    let home = scene.objects.iter().filter(|h| h.category == o.category);
+                    let miss = home
+                        .map(|h| (h.center[0] - o.center[0]).hypot(h.center[1] - o.center[1]))
+                        .fold(f64::MAX, f64::min);
+                    assert!(
+                        miss < 0.005,
+                        "{} moved out {offset} m under ±{} m: {miss:.4} m from where it stood",
+                        o.category,
+                        bounds.center_max[0]
+                    );
+                }
+            }
+        }
     }
 }
