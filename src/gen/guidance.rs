@@ -61,7 +61,8 @@ pub struct GuidanceConfig {
     #[serde(default)]
     pub against_wall: f64,
     /// How far (m) beyond the data's gap a piece's back may be from the wall behind it for J_w to
-    /// draw it back; farther, the model put it out in the room and J_w leaves it there.
+    /// draw it back; farther, the model put it out in the room and J_w leaves it there (0.6 in
+    /// [`all`](Self::all); absent from a file: 0.3, the default until 2026-12-05).
     #[serde(default = "GuidanceConfig::default_against_wall_reach")]
     pub against_wall_reach: f64,
     /// The gap (m) J_w draws a wall piece's back to: the data's own (`None`, the default:
@@ -166,9 +167,10 @@ impl GuidanceConfig {
     /// (docs/RESULTS.md, "Guidance that converges", "Bodies and support" and "Bones, not surface
     /// points", "J_b weighted 8", "J_o's gap, the default" and "The exact terms, the default"):
     /// J_b weighted 8, exact, 5 cm inside the walls; J_w 0.2 drawing wall pieces back to their
-    /// wall; J_o as the share of the smaller piece with footprints kept 3 cm apart; J_c 4, exact,
-    /// holding the pieces under people (which otherwise move like any piece) until their surface
-    /// covers the contact box; J_p and J_s 1 keeping them out of the bodies and up against them;
+    /// wall from up to 60 cm beyond the data's gap (docs/RESULTS.md, "J_w reaching 60 cm, once
+    /// the steps converge"); J_o as the share of the smaller piece with footprints kept 3 cm
+    /// apart; J_c 4, exact, holding the pieces under people (which otherwise move like any piece)
+    /// until their surface covers the contact box; J_p and J_s 1 keeping them out of the bodies and up against them;
     /// J_q 1 turning pieces square to the walls; in each of the last 20 steps up to 128 gradient
     /// steps of at most 3 cm; pieces in anchored slots overlapping by more than a quarter of the
     /// smaller are folded into one (docs/RESULTS.md, "One piece for the people on it").
@@ -178,7 +180,7 @@ impl GuidanceConfig {
             bound: 8.0,
             bound_margin: Some(crate::data::layout::WALL_GAP),
             against_wall: 0.2,
-            against_wall_reach: Self::default_against_wall_reach(),
+            against_wall_reach: 0.6,
             against_wall_gap: None,
             object: 1.0,
             overlap: Overlap::Smaller,
@@ -222,6 +224,7 @@ impl GuidanceConfig {
             bound: 1.0,
             bound_margin: None,
             against_wall: 0.0,
+            against_wall_reach: Self::default_against_wall_reach(),
             contact_margin: None,
             overlap: Overlap::Iou,
             object_gap: 0.0,
