@@ -15,9 +15,9 @@
 //!
 //! It is quadratic, and weighted low, because a guidance step moves a piece by γ × ℓ² ≈ 0.77 m
 //! per unit of gradient ([`CENTRE_STEP_LENGTH`](super::guidance::CENTRE_STEP_LENGTH) ℓ): a term
-//! whose slope does not fall to zero at its target overshoots it every step (weighted 1 with a 5 cm Huber zone, it jolted wall pieces
-//! into J_b's margin and back, and the two together shrank them: val bedrooms' cabinets
-//! 0.45 → 0.25 m deep). Not here: the weights and steps ([`super::guidance`]).
+//! whose slope does not fall to zero at its target overshoots it every step (weighted 1 with a
+//! 5 cm Huber zone, it jolted wall pieces into J_b's margin and back, and the two together shrank
+//! them: val bedrooms' cabinets 0.45 → 0.25 m deep). Not here: the weights and steps ([`super::guidance`]).
 
 use super::guidance::{GuidedObject, ObjectGradient};
 use crate::data::stands_against_wall;

@@ -170,8 +170,8 @@ impl GuidanceConfig {
     /// wall from up to 60 cm beyond the data's gap (docs/RESULTS.md, "J_w reaching 60 cm, once
     /// the steps converge"); J_o as the share of the smaller piece with footprints kept 3 cm
     /// apart; J_c 4, exact, holding the pieces under people (which otherwise move like any piece)
-    /// until their surface covers the contact box; J_p and J_s 1 keeping them out of the bodies and up against them;
-    /// J_q 1 turning pieces square to the walls; in each of the last 20 steps up to 128 gradient
+    /// until their surface covers the contact box; J_p and J_s 1 keeping them out of the bodies
+    /// and up against them; J_q 1 turning pieces square to the walls; in each of the last 20 steps up to 128 gradient
     /// steps of at most 3 cm; pieces in anchored slots overlapping by more than a quarter of the
     /// smaller are folded into one (docs/RESULTS.md, "One piece for the people on it").
     pub fn all() -> GuidanceConfig {
@@ -976,11 +976,11 @@ fn capped(step: &[f64; 8], scale: f64, cap: f64, bounds: &Bounds) -> f64 {
     if moved > cap { cap / moved } else { 1.0 }
 }
 
-/// A guidance step moves a piece's centre γ · ℓ² metres per unit of weighted gradient (m⁻¹), ℓ this
+/// A guidance step moves a piece's centre γ · ℓ² metres per unit of weighted gradient, ℓ this
 /// length (m), in every model. ℓ is the bedroom model's decoding half-range, with which γ and the
 /// terms' weights were tuned. It used to be each model's own half-range, so the same γ moved a
 /// living room's pieces (5.2 m) 3.6 times as far: J_w then overshot the wall and J_b pushed the
-/// piece back 3 cm, turn about, and half the wall pieces ended 8 cm from their wall instead of 5
+/// piece back 3 cm, turn about, and two in five wall pieces ended 8 cm from their wall, not 5
 /// (docs/RESULTS.md, "One step length for every model").
 pub const CENTRE_STEP_LENGTH: f64 = 2.77;
 
