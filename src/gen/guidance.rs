@@ -171,8 +171,8 @@ impl GuidanceConfig {
     /// the steps converge"); J_o as the share of the smaller piece with footprints kept 3 cm
     /// apart; J_c 4, exact, holding the pieces under people (which otherwise move like any piece)
     /// until their surface covers the contact box; J_p and J_s 1 keeping them out of the bodies
-    /// and up against them; J_q 1 turning pieces square to the walls; in each of the last 20 steps up to 128 gradient
-    /// steps of at most 3 cm; pieces in anchored slots overlapping by more than a quarter of the
+    /// and up against them; J_q 1 turning pieces square to the walls; in each of the last 20
+    /// steps up to 128 gradient steps of at most 3 cm; pieces in anchored slots overlapping by more than a quarter of the
     /// smaller are folded into one (docs/RESULTS.md, "One piece for the people on it").
     pub fn all() -> GuidanceConfig {
         GuidanceConfig {
@@ -224,7 +224,7 @@ impl GuidanceConfig {
             bound: 1.0,
             bound_margin: None,
             against_wall: 0.0,
-            against_wall_reach: Self::default_against_wall_reach(),
+            against_wall_reach: 0.3,
             contact_margin: None,
             overlap: Overlap::Iou,
             object_gap: 0.0,
@@ -244,7 +244,7 @@ impl GuidanceConfig {
     }
 
     fn default_against_wall_reach() -> f64 {
-        0.3
+        Self::shade().against_wall_reach
     }
 
     fn default_every() -> usize {

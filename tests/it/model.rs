@@ -926,11 +926,11 @@ fn a_low_noise_expert_takes_the_last_steps_and_must_fit_its_model() {
 
 #[test]
 fn every_shipped_model_runs_the_whole_chain_alone_and_the_weights_stay_small() {
-    use shade_sim::generator::{Prediction, shipped_expert, shipped_generator};
+    use shade_sim::generator::{Prediction, shipped_expert, shipped_generator, shipped_model};
     // Three v models on the log-SNR schedule, one per room type, none with a low-noise expert
     // (the living rooms' x₀ model needed one until 2026-12-05: docs/RESULTS.md).
     for room in [RoomType::Bedroom, RoomType::Living, RoomType::Dining] {
-        let model = shade_sim::generator::shipped_model(room).unwrap();
+        let model = shipped_model(room).unwrap();
         assert_eq!(model.meta.model.prediction, Prediction::V, "{room:?}");
         assert!(shipped_expert(room).unwrap().is_none() && shipped_generator(room).unwrap().expert().is_none());
     }
