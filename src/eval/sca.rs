@@ -164,10 +164,9 @@ fn piece_descriptors(
     };
     let mut nearest = FAR;
     let mut shared = 0.0;
-    for (j, other) in boxes.iter().enumerate().filter(|(j, _)| *j != i) {
+    for other in boxes.iter().enumerate().filter(|&(j, _)| j != i).map(|(_, other)| other) {
         nearest = nearest.min(gap(b, other).min(gap(other, b)));
         shared += intersection_volume(b, other);
-        let _ = j;
     }
     let (min, max) = polygon.bounds();
     let centre = (min + max) * 0.5;
