@@ -47,7 +47,7 @@ train bedroom 240000 0.25 --extra-data "$data/bedroom-extra" --extra-data "$data
     --prediction v --schedule log_snr --min-snr 5 --min-snr-floor 1
 # Living and dining rooms keep the earlier preset's yaw and no wall distances: the new preset
 # scored worse on their val splits (docs/RESULTS.md). The living model is the bedrooms' v model
-# on 29,273 rooms for 100,000 steps; it replaced an x0 model that needed a low-noise expert for
+# on 29,273 rooms for 200,000 steps; it replaced an x0 model that needed a low-noise expert for
 # its last steps (docs/RESULTS.md, "The living model as a v model"), and samples with DDIM's
 # eta 1.5 on the geometry as the dining model does (chosen on val; recorded in its config.json).
 train living 200000 0.25 --extra-data "$data/living-extra" --extra-data "$data/living-extra2" \
