@@ -17,7 +17,8 @@
 //! per unit of gradient ([`CENTRE_STEP_LENGTH`](super::guidance::CENTRE_STEP_LENGTH) ℓ): a term
 //! whose slope does not fall to zero at its target overshoots it every step (weighted 1 with a
 //! 5 cm Huber zone, it jolted wall pieces into J_b's margin and back, and the two together shrank
-//! them: val bedrooms' cabinets 0.45 → 0.25 m deep). Not here: the weights and steps ([`super::guidance`]).
+//! them: val bedrooms' cabinets 0.45 → 0.25 m deep). Not here: the weights and steps
+//! ([`super::guidance`]).
 
 use super::guidance::{GuidedObject, ObjectGradient};
 use crate::data::stands_against_wall;

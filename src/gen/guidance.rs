@@ -172,8 +172,9 @@ impl GuidanceConfig {
     /// apart; J_c 4, exact, holding the pieces under people (which otherwise move like any piece)
     /// until their surface covers the contact box; J_p and J_s 1 keeping them out of the bodies
     /// and up against them; J_q 1 turning pieces square to the walls; in each of the last 20
-    /// steps up to 128 gradient steps of at most 3 cm; pieces in anchored slots overlapping by more than a quarter of the
-    /// smaller are folded into one (docs/RESULTS.md, "One piece for the people on it").
+    /// steps up to 128 gradient steps of at most 3 cm; pieces in anchored slots overlapping by
+    /// more than a quarter of the smaller are folded into one (docs/RESULTS.md, "One piece for
+    /// the people on it").
     pub fn all() -> GuidanceConfig {
         GuidanceConfig {
             motion: 1.0,
