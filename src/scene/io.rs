@@ -52,7 +52,12 @@ impl Scene {
     pub fn from_json(text: &str, origin: &Path) -> Result<Scene, SceneError> {
         let de = &mut serde_json::Deserializer::from_str(text);
         let parse_error = |path: String, inner: serde_json::Error| {
-            let message = strip_position(&inner.to_string());
+            // A document cut short fails before any field is read: serde's path is then `?`.
+            let path = if path == "?" { String::new() } else { path };
+            let message = match inner.is_eof() {
+                true => format!("the file ends inside the document ({})", strip_position(&inner.to_string())),
+                false => strip_position(&inner.to_string()),
+            };
             SceneError::Parse { file: origin.to_path_buf(), path, message, line: inner.line(), column: inner.column() }
         };
         let scene: Scene = serde_path_to_error::deserialize(&mut *de).map_err(|e| {

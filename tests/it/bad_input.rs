@@ -52,7 +52,12 @@ fn the_valid_base_is_accepted() {
 
 #[test]
 fn malformed_json() {
-    rejects_text("{ \"format\": \"shade-scene/1\", ", "EOF while parsing");
+    // A document cut short: said so, with no field path (serde's is `?` there).
+    rejects_text("{ \"format\": \"shade-scene/1\", ", ".json: the file ends inside the document (EOF while parsing");
+    rejects_text(
+        "{ \"format\": \"shade-scene/1\"",
+        ".json: the file ends inside the document (EOF while parsing an object)",
+    );
     rejects_text("{\"format\": \"shade-scene/1\" \"room_type\": 1}", "line 1, column");
 }
 
