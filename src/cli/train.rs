@@ -73,6 +73,10 @@ pub struct TrainArgs {
     /// unit (docs/RESULTS.md, "Fourier features"; default: the preset's, 0 = none).
     #[arg(long)]
     pub fourier_bands: Option<usize>,
+    /// Whether object tokens get the embedding of their attributes in units of the step's noise
+    /// (docs/RESULTS.md, "Noise-scaled features"): true or false (default: the preset's, false).
+    #[arg(long)]
+    pub noise_scaled_features: Option<bool>,
     /// Whether object tokens get the embedding of the gaps ahead of their piece's faces to the
     /// nearest other piece, measured in metres with the data's bounds (docs/RESULTS.md, "Gaps
     /// between pieces"): true or false (default: the preset's, false).
@@ -220,6 +224,9 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     }
     if let Some(bands) = args.fourier_bands {
         model.fourier_bands = bands;
+    }
+    if let Some(noise_scaled) = args.noise_scaled_features {
+        model.noise_scaled_features = noise_scaled;
     }
     if let Some(gaps) = args.gap_features {
         model.gap_bounds = match gaps {

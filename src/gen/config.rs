@@ -74,6 +74,10 @@ pub struct ModelConfig {
     /// configs): none.
     #[serde(default)]
     pub fourier_bands: usize,
+    /// Whether every object token also gets an embedding of its continuous attributes in units of
+    /// the step's noise, squashed ([`super::noise_scaled`]). Off in older configs.
+    #[serde(default)]
+    pub noise_scaled_features: bool,
     /// Gaps between pieces ([`super::gaps`]): every object token also gets an embedding of the
     /// gaps ahead of its piece's four faces to the nearest other piece, measured on the noisy
     /// tokens in metres with these bounds (the training data's, as the checkpoint's own). None
@@ -242,6 +246,7 @@ impl ModelConfig {
             relation_values: false,
             wall_features: true,
             fourier_bands: 0,
+            noise_scaled_features: false,
             gap_bounds: None,
             slot_roles: false,
             world_features: false,

@@ -29,6 +29,7 @@ pub mod guidance;
 pub mod inference;
 mod matmul;
 mod model;
+pub mod noise_scaled;
 mod params;
 pub mod phys_guidance;
 pub mod relations;

@@ -12,6 +12,7 @@
 use super::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES, RELATION_HIDDEN, TIME_FEATURES};
 use super::fourier;
 use super::gaps::{self, GAP_FEATURES};
+use super::noise_scaled;
 use super::params::{Init, Linear, Params, layer_norm};
 use super::relations::{self, RELATION_FEATURES, RELATION_VALUE_FEATURES};
 use super::walls::{self, WALL_FEATURES};
@@ -161,6 +162,8 @@ pub struct Denoiser {
     pub(super) walls: Option<Linear>,
     /// With Fourier features: the embedding of a slot's sines and cosines, added to its token.
     pub(super) fourier: Option<Linear>,
+    /// With noise-scaled features: the embedding of a slot's attributes in units of the noise.
+    pub(super) noise_scaled: Option<Linear>,
     /// With gap features: the embedding of the gaps ahead of a slot's piece, added to its token.
     pub(super) gaps: Option<Linear>,
     /// With self-conditioning: the embedding of the previous clean estimate of a slot, added to
@@ -219,6 +222,10 @@ impl Denoiser {
             fourier: match cfg.fourier_bands {
                 0 => None,
                 _ => Some(p.linear("fourier", fourier::features_per_slot(cfg), d, false)?),
+            },
+            noise_scaled: match cfg.noise_scaled_features {
+                true => Some(p.linear("noise_scaled", noise_scaled::features_per_slot(), d, false)?),
+                false => None,
             },
             gaps: match cfg.gap_bounds {
                 Some(_) => Some(p.linear("gaps", GAP_FEATURES, d, false)?),
@@ -319,6 +326,12 @@ impl Denoiser {
             let (b, slots, _) = x.dims3()?;
             let features = fourier::slot_features(&self.cfg, &x.flatten_all()?.to_vec1::<f32>()?);
             let width = fourier::features_per_slot(&self.cfg);
+            h = (h + layer.forward(&Tensor::from_vec(features, (b, slots, width), x.device())?)?)?;
+        }
+        if let Some(layer) = &self.noise_scaled {
+            let (b, slots, _) = x.dims3()?;
+            let features = noise_scaled::slot_features(&self.cfg, t, &x.flatten_all()?.to_vec1::<f32>()?);
+            let width = noise_scaled::features_per_slot();
             h = (h + layer.forward(&Tensor::from_vec(features, (b, slots, width), x.device())?)?)?;
         }
         if let Some(layer) = &self.world {

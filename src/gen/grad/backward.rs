@@ -83,6 +83,9 @@ pub(super) fn run(net: &GradNet, p: &[f32], tape: &Tape, inp: &ChunkInputs, tota
     if let Some(fourier) = &net.fourier {
         fourier.backward(p, g, &step.fourier_in, &dh[..objects * d], None);
     }
+    if let Some(layer) = &net.noise_scaled {
+        layer.backward(p, g, &step.noise_scaled_in, &dh[..objects * d], None);
+    }
     if let Some(gaps) = &net.gaps {
         gaps.backward(p, g, &step.gap_in, &dh[..objects * d], None);
     }

@@ -15,7 +15,7 @@ use super::{ChunkInputs, ConditionInputs, GradNet};
 use crate::generator::config::{CONTACT_FEATURES, FLOOR_FEATURES, FREE_FEATURES};
 use crate::generator::matmul::LinearAt;
 use crate::generator::model::time_feature_values;
-use crate::generator::{anchors, fourier, gaps, relations, roles, walls};
+use crate::generator::{anchors, fourier, gaps, noise_scaled, relations, roles, walls};
 
 /// A PointNet's activations: ReLU outputs of the first two layers, the third's output and, per
 /// item, the max over the points.
@@ -205,6 +205,8 @@ pub(super) struct StepTape {
     pub(super) wall_in: Vec<f32>,
     /// With Fourier features: every object row's ([`fourier::slot_features`]).
     pub(super) fourier_in: Vec<f32>,
+    /// With noise-scaled features: every object row's ([`noise_scaled::slot_features`]).
+    pub(super) noise_scaled_in: Vec<f32>,
     /// With gap features: every object row's ([`gaps::slot_features`]).
     pub(super) gap_in: Vec<f32>,
     /// With world features: every object row's ([`anchors::world_slot_features`]).
@@ -279,6 +281,7 @@ impl StepTape {
             })
         });
         let fourier_in = embed(net.fourier.as_ref(), &|| fourier::slot_features(cfg, noisy));
+        let noise_scaled_in = embed(net.noise_scaled.as_ref(), &|| noise_scaled::slot_features(cfg, t, noisy));
         let gap_in = match &cfg.gap_bounds {
             Some(bounds) => embed(net.gaps.as_ref(), &|| {
                 slot_features(net, cond, noisy, |tokens, contacts, mask, _| {
@@ -365,6 +368,7 @@ impl StepTape {
             relation_values_in,
             wall_in,
             fourier_in,
+            noise_scaled_in,
             gap_in,
             world_in,
             role_in,

@@ -56,6 +56,7 @@ pub struct GradNet {
     relation: Option<[LinearAt; 2]>,
     walls: Option<LinearAt>,
     fourier: Option<LinearAt>,
+    noise_scaled: Option<LinearAt>,
     gaps: Option<LinearAt>,
     roles: Option<LinearAt>,
     world: Option<LinearAt>,
@@ -236,6 +237,10 @@ impl GradNet {
             fourier: match cfg.fourier_bands {
                 0 => None,
                 _ => Some(linear("fourier", super::fourier::features_per_slot(cfg), d)?),
+            },
+            noise_scaled: match cfg.noise_scaled_features {
+                true => Some(linear("noise_scaled", super::noise_scaled::features_per_slot(), d)?),
+                false => None,
             },
             gaps: if cfg.gap_bounds.is_some() { Some(linear("gaps", GAP_FEATURES, d)?) } else { None },
             roles: if cfg.slot_roles { Some(linear("roles", cfg.slots(), d)?) } else { None },

@@ -97,6 +97,7 @@ fn gradients_equal_candles_with_anchored_slots_relations_self_conditioning_rooms
         room_token: true,
         count_condition: true,
         fourier_bands: 3,
+        noise_scaled_features: true,
         gap_bounds: Some(checkpoint.meta.bounds.clone()),
         slot_roles: true,
         world_features: true,
@@ -127,7 +128,7 @@ fn gradients_equal_candles_with_anchored_slots_relations_self_conditioning_rooms
     assert!(cfg.wall_features && grads.contains_key("walls.weight"));
     assert!(grads.contains_key("estimate.weight") && grads.contains_key("fourier.weight"));
     assert!(grads.contains_key("gaps.weight") && grads.contains_key("roles.weight"));
-    assert!(grads.contains_key("world.weight"));
+    assert!(grads.contains_key("world.weight") && grads.contains_key("noise_scaled.weight"));
     assert!(
         grads.contains_key("blocks.1.relation_values.weight") && grads.contains_key("blocks.0.relation_values.bias")
     );
