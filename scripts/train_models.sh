@@ -5,8 +5,8 @@
 # rooms and 20,000 dining rooms (seed 2) that join their training splits (`--extra-data`; val and
 # test stay the first draw's), then the three trainings with rare categories weighed up
 # (--category-balance 0.25), one after another, each on every core: bedrooms 240,000 steps
-# (about 110 minutes alone on a 2-core machine, plus 13 for the extra rooms), living rooms 100,000
-# (about 65, plus 12), dining rooms 140,000 (about 98, plus 15).
+# (about 110 minutes alone on a 2-core machine, plus 13 for the extra rooms), living rooms 200,000
+# (about 121, plus 12), dining rooms 170,000 (about 106, plus 15).
 # Usage: bash scripts/train_models.sh [DATA_DIR] [MODELS_DIR]   (defaults: data, models)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -55,8 +55,8 @@ train living 200000 0.25 --extra-data "$data/living-extra" --extra-data "$data/l
     --prediction v --schedule log_snr --min-snr 5 --min-snr-floor 1 --geometry-eta 1.5
 # Dining: the v model of the bedrooms (docs/RESULTS.md, "The dining v model on both draws").
 # Its default sampler, DDIM's η 1.5 on the geometry (docs/RESULTS.md, "Fresh noise on the dining
-# rooms' geometry"), goes into its config.json. 29,686 rooms for 140,000 steps, most of the
-# 150 minutes the model issue allows (docs/RESULTS.md, "The dining model for 140,000 steps").
-train dining 140000 0.25 --extra-data "$data/dining-extra" --extra-data "$data/dining-extra2" \
+# rooms' geometry"), goes into its config.json. 29,686 rooms for 170,000 steps, most of the
+# 150 minutes the model issue allows (docs/RESULTS.md, "The dining model for 170,000 steps").
+train dining 170000 0.25 --extra-data "$data/dining-extra" --extra-data "$data/dining-extra2" \
     --anchored-yaw box --wall-features false \
     --prediction v --schedule log_snr --min-snr 5 --min-snr-floor 1 --geometry-eta 1.5
