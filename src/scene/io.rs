@@ -54,9 +54,10 @@ impl Scene {
         let parse_error = |path: String, inner: serde_json::Error| {
             // A document cut short fails before any field is read: serde's path is then `?`.
             let path = if path == "?" { String::new() } else { path };
-            let message = match inner.is_eof() {
-                true => format!("the file ends inside the document ({})", strip_position(&inner.to_string())),
-                false => strip_position(&inner.to_string()),
+            let message = match (inner.is_eof(), text.trim().is_empty()) {
+                (true, true) => "the file is empty".to_string(),
+                (true, false) => format!("the file ends inside the document ({})", strip_position(&inner.to_string())),
+                (false, _) => strip_position(&inner.to_string()),
             };
             SceneError::Parse { file: origin.to_path_buf(), path, message, line: inner.line(), column: inner.column() }
         };

@@ -59,6 +59,7 @@ fn malformed_json() {
         ".json: the file ends inside the document (EOF while parsing an object)",
     );
     rejects_text("{\"format\": \"shade-scene/1\" \"room_type\": 1}", "line 1, column");
+    rejects_text(" \n", ".json: the file is empty");
 }
 
 #[test]
