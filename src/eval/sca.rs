@@ -164,7 +164,10 @@ fn piece_descriptors(
     };
     let mut nearest = FAR;
     let mut shared = 0.0;
-    for other in boxes.iter().enumerate().filter(|&(j, _)| j != i).map(|(_, other)| other) {
+    for (j, other) in boxes.iter().enumerate() {
+        if j == i {
+            continue;
+        }
         nearest = nearest.min(gap(b, other).min(gap(other, b)));
         shared += intersection_volume(b, other);
     }
