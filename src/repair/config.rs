@@ -371,9 +371,9 @@ impl RepairConfig {
     pub fn from_json(text: &str) -> Result<RepairConfig, (String, String)> {
         let mut de = serde_json::Deserializer::from_str(text);
         let cfg: RepairConfig = serde_path_to_error::deserialize(&mut de).map_err(|e| {
-            // A syntax error has no field: the path is empty or `?`.
-            let field = e.path().to_string();
-            (if field.is_empty() || field == "?" { ".".into() } else { field }, e.into_inner().to_string())
+            // A syntax error has no field: the document itself, `.`.
+            let field = crate::scene::failed_path(&e);
+            (if field.is_empty() { ".".into() } else { field }, e.into_inner().to_string())
         })?;
         de.end().map_err(|e| (".".to_string(), e.to_string()))?;
         cfg.validate()?;

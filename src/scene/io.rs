@@ -52,8 +52,6 @@ impl Scene {
     pub fn from_json(text: &str, origin: &Path) -> Result<Scene, SceneError> {
         let de = &mut serde_json::Deserializer::from_str(text);
         let parse_error = |path: String, inner: serde_json::Error| {
-            // A document cut short fails before any field is read: serde's path is then `?`.
-            let path = if path == "?" { String::new() } else { path };
             let message = match (inner.is_eof(), text.trim().is_empty()) {
                 (true, true) => "the file is empty".to_string(),
                 (true, false) => format!("the file ends inside the document ({})", strip_position(&inner.to_string())),
@@ -62,7 +60,7 @@ impl Scene {
             SceneError::Parse { file: origin.to_path_buf(), path, message, line: inner.line(), column: inner.column() }
         };
         let scene: Scene = serde_path_to_error::deserialize(&mut *de).map_err(|e| {
-            let path = e.path().to_string();
+            let path = failed_path(&e);
             parse_error(path, e.into_inner())
         })?;
         // Only whitespace may follow the document: a scene with bytes after it is not one scene.
@@ -120,6 +118,15 @@ pub fn write_atomic(file: &Path, bytes: &[u8]) -> std::io::Result<()> {
 }
 
 /// serde_json appends " at line L column C"; the error carries those separately.
+/// The JSON path of the value a parse failed at, empty for the document itself: serde_path_to_error
+/// names a value it never reached (a syntax error, a document cut short) `?`.
+pub(crate) fn failed_path<E>(error: &serde_path_to_error::Error<E>) -> String {
+    match error.path().to_string() {
+        path if path == "?" => String::new(),
+        path => path,
+    }
+}
+
 fn strip_position(message: &str) -> String {
     match message.rfind(" at line ") {
         Some(i) => message[..i].to_string(),

@@ -22,6 +22,7 @@ pub use error::{Problem, ProblemKind, SceneError};
 pub use floor_plan::FloorPlan;
 pub use frame::RoomFrame;
 pub use human::{ActionSpan, Bone, Human, JOINT_NAMES, Skeleton};
+pub(crate) use io::failed_path;
 pub use io::write_atomic;
 pub use limits::SceneLimits;
 pub use object::Object;
