@@ -24,6 +24,7 @@
 //! Empty slots (largest class "empty") are left alone. The physics-feedback term lives elsewhere.
 
 use super::against_walls::gap_to_wall_behind;
+use super::at_table::{knees_of, tables_short_of_knees};
 use super::beyond_walls::depth_beyond_walls;
 use super::bodies::{BodyBalls, SupportNeed, body_penetration, support_shortfall};
 use super::boxes_uncovered::box_corners_outside;
@@ -106,6 +107,14 @@ pub struct GuidanceConfig {
     /// [`super::bodies`]).
     #[serde(default)]
     pub support: f64,
+    /// Weight of J_t (ours; metres): a diner's table drawn until its top reaches over their knees
+    /// ([`super::at_table`]; 0 = off, as in files without the field).
+    #[serde(default)]
+    pub table: f64,
+    /// How far (m) a diner's knees may be from the nearest table for J_t to draw it to them;
+    /// farther, the model gave them none and J_t leaves the layout as it is.
+    #[serde(default = "GuidanceConfig::default_table_reach")]
+    pub table_reach: f64,
     /// Step size γ: per unit of weighted J gradient, a piece's centre moves γ · ℓ² metres (ℓ =
     /// [`CENTRE_STEP_LENGTH`], the same in every model), its sizes γ token units (scaled by
     /// `size_mobility`), its yaw about γ radians.
@@ -171,7 +180,8 @@ impl GuidanceConfig {
     /// the steps converge"); J_o as the share of the smaller piece with footprints kept 3 cm
     /// apart; J_c 4, exact, holding the pieces under people (which otherwise move like any piece)
     /// until their surface covers the contact box; J_p and J_s 1 keeping them out of the bodies
-    /// and up against them; J_q 1 turning pieces square to the walls; in each of the last 20
+    /// and up against them; J_t 1 drawing a diner's table over their knees from up to 50 cm
+    /// (docs/RESULTS.md, "Diners at their table"); J_q 1 turning pieces square to the walls; in each of the last 20
     /// steps up to 128 gradient steps of at most 3 cm; pieces in anchored slots overlapping by
     /// more than a quarter of the smaller are folded into one (docs/RESULTS.md, "One piece for
     /// the people on it").
@@ -192,6 +202,8 @@ impl GuidanceConfig {
             contact_margin: Some(0.0),
             body: 1.0,
             support: 1.0,
+            table: 1.0,
+            table_reach: 0.5,
             scale: 0.1,
             until_step: 20,
             every: 1,
@@ -234,6 +246,7 @@ impl GuidanceConfig {
             contact: 0.0,
             body: 0.0,
             support: 0.0,
+            table: 0.0,
             until_step: 100,
             anchored_mobility: 0.0,
             size_mobility: 1.0,
@@ -246,6 +259,10 @@ impl GuidanceConfig {
 
     fn default_against_wall_reach() -> f64 {
         Self::shade().against_wall_reach
+    }
+
+    fn default_table_reach() -> f64 {
+        Self::all().table_reach
     }
 
     fn default_every() -> usize {
@@ -306,8 +323,8 @@ impl GuidanceConfig {
     /// costs one evaluation of J per scene).
     pub const MAX_ITERATIONS: usize = 1000;
 
-    /// Why the configuration cannot guide, if it cannot: a weight, γ, `phys` or
-    /// `against_wall_reach` that is negative or not finite, `anchored_mobility` or
+    /// Why the configuration cannot guide, if it cannot: a weight, γ, `phys`,
+    /// `against_wall_reach` or `table_reach` that is negative or not finite, `anchored_mobility` or
     /// `size_mobility` outside 0..1,
     /// `max_step` not a positive distance, `bound_margin`, `contact_margin`, `against_wall_gap`, `object_gap` or
     /// `real_sizes` not a distance ≥ 0,
@@ -320,6 +337,8 @@ impl GuidanceConfig {
             ("contact", self.contact),
             ("body", self.body),
             ("support", self.support),
+            ("table", self.table),
+            ("table_reach", self.table_reach),
             ("square", self.square),
             ("against_wall", self.against_wall),
             ("against_wall_reach", self.against_wall_reach),
@@ -525,6 +544,8 @@ pub struct Footprint {
     pub center: DVec2,
     /// The box's footprint corners.
     pub corners: [DVec2; 4],
+    /// A sitter's knees (J_t; [`super::at_table::knees_of`]); `None` for other boxes.
+    pub knees: Option<DVec2>,
 }
 
 impl Footprint {
@@ -537,7 +558,7 @@ impl Footprint {
             _ => b.obox.z_range().1,
         };
         let support = Some(SupportNeed { at: b.obox.center.truncate(), height });
-        Footprint { mask, area, support, center: b.obox.center.truncate(), corners: b.obox.footprint() }
+        Footprint { mask, area, support, center: b.obox.center.truncate(), corners: b.obox.footprint(), knees: None }
     }
 }
 
@@ -545,7 +566,11 @@ impl SceneMasks {
     /// The masks of `scene`.
     pub fn of(scene: &Scene) -> SceneMasks {
         let c = Conditions::of(scene);
-        let contacts = c.contact_boxes.iter().map(|b| Footprint::of(&c.window, b)).collect();
+        let contacts = c
+            .contact_boxes
+            .iter()
+            .map(|b| Footprint { knees: knees_of(scene, b), ..Footprint::of(&c.window, b) })
+            .collect();
         let bodies = BodyBalls::of(&scene.humans);
         let floor = scene.floor_plan.polygon();
         let wall = floor.longest_edge_direction();
@@ -721,18 +746,24 @@ pub fn contact_shortfall(
 /// footprint towards `p` (zero inside): moving the piece's centre that way shortens the distance
 /// at rate 1.
 fn distance_outside(o: &GuidedObject, p: DVec2) -> (f64, DVec2) {
-    let b = o.obox();
-    let local = b.to_local(p.extend(b.center.z));
-    let excess = DVec2::new(
-        (local.x.abs() - o.size.x * 0.5).max(0.0) * local.x.signum(),
-        (local.y.abs() - o.size.y * 0.5).max(0.0) * local.y.signum(),
-    );
+    let excess = excess_outside(o, p);
     let d = excess.length();
     if d <= 0.0 {
         return (0.0, DVec2::ZERO);
     }
-    let (ax, ay) = b.axes();
+    let (ax, ay) = o.obox().axes();
     (d, ax * (excess.x / d) + ay * (excess.y / d))
+}
+
+/// How far `p` lies beyond the footprint of `o` along the piece's own width and depth axes (signed
+/// as `p` lies from the centre; 0 on an axis whose extent takes it in).
+pub(super) fn excess_outside(o: &GuidedObject, p: DVec2) -> DVec2 {
+    let b = o.obox();
+    let local = b.to_local(p.extend(b.center.z));
+    DVec2::new(
+        (local.x.abs() - o.size.x * 0.5).max(0.0) * local.x.signum(),
+        (local.y.abs() - o.size.y * 0.5).max(0.0) * local.y.signum(),
+    )
 }
 
 /// The weighted J of one scene's objects and its gradient; `anchors[i]` are the contact boxes
@@ -784,6 +815,11 @@ pub fn guidance_cost(
     }
     if cfg.body > 0.0 {
         add(cfg.body, body_penetration(objects, &masks.bodies));
+    }
+    if cfg.table > 0.0 {
+        let knees: Vec<Vec<DVec2>> =
+            anchors.iter().map(|a| a.iter().filter_map(|&k| masks.contacts.get(k)?.knees).collect()).collect();
+        add(cfg.table, tables_short_of_knees(objects, &knees, cfg.table_reach));
     }
     if cfg.against_wall > 0.0 {
         let wall_gap = cfg.against_wall_gap.unwrap_or(crate::data::layout::WALL_GAP);
@@ -1316,6 +1352,7 @@ mod tests {
         assert_eq!(cfg, GuidanceConfig { phys_until: 0, phys_every: 0, ..GuidanceConfig::shade() });
         assert_eq!((cfg.bound_margin, cfg.against_wall, cfg.against_wall_reach), (None, 0.0, 0.3));
         assert_eq!((cfg.contact_margin, cfg.object_gap), (None, 0.0));
+        assert_eq!((cfg.table, GuidanceConfig::all().table), (0.0, 1.0), "J_t is off in an older file");
         for cfg in [GuidanceConfig::all(), GuidanceConfig::soft()] {
             assert_eq!(serde_json::from_str::<GuidanceConfig>(&serde_json::to_string(&cfg).unwrap()).unwrap(), cfg);
         }
@@ -1358,6 +1395,10 @@ mod tests {
                 .starts_with("fold_anchored:")
         );
         assert!(bad(GuidanceConfig { iterations: 1_000_000_000, ..GuidanceConfig::all() }).starts_with("iterations:"));
+        assert!(bad(GuidanceConfig { table: -1.0, ..GuidanceConfig::all() }).starts_with("table:"));
+        assert!(
+            bad(GuidanceConfig { table_reach: f64::INFINITY, ..GuidanceConfig::all() }).starts_with("table_reach:")
+        );
         assert!(
             bad(GuidanceConfig { anchored_mobility: 2.0, ..GuidanceConfig::all() }).starts_with("anchored_mobility:")
         );
@@ -1503,6 +1544,57 @@ mod batch_tests {
         let before = apart.clone();
         fold_anchored(&mut apart, &mut tokens, 2, 0.25, dim);
         assert_eq!(apart, before);
+    }
+
+    #[test]
+    fn a_diner_s_table_drawn_away_from_them_is_pulled_back_and_the_data_s_own_costs_nothing() {
+        // Synthetic dining rooms: every diner's table reaches over their knees, as in the data.
+        let only_table = GuidanceConfig {
+            motion: 0.0,
+            bound: 0.0,
+            object: 0.0,
+            contact: 0.0,
+            body: 0.0,
+            support: 0.0,
+            against_wall: 0.0,
+            square: 0.0,
+            ..GuidanceConfig::all()
+        };
+        let mut diners = 0;
+        for index in 0..12 {
+            let scene = generate_room(RoomType::Dining, 3, index, false).scene;
+            let masks = SceneMasks::of(&scene);
+            let mut objects: Vec<GuidedObject> = scene.objects.iter().map(GuidedObject::of).collect();
+            // Each object's boxes: those whose centre its footprint holds (the data's own anchors).
+            let anchors: Vec<Vec<usize>> = objects
+                .iter()
+                .map(|o| {
+                    (0..masks.contacts.len())
+                        .filter(|&k| o.obox().footprint_contains(masks.contacts[k].center))
+                        .collect()
+                })
+                .collect();
+            let seated: usize = objects
+                .iter()
+                .zip(&anchors)
+                .filter(|(o, _)| o.category == Category::DiningChair)
+                .map(|(_, a)| a.iter().filter(|&&k| masks.contacts[k].knees.is_some()).count())
+                .sum();
+            let Some(t) = objects.iter().position(|o| o.category == Category::DiningTable) else { continue };
+            if seated == 0 {
+                continue;
+            }
+            diners += seated;
+            assert_eq!(guidance_cost(&objects, &anchors, &masks, &only_table).0, 0.0, "room {index}");
+            // The table at half its width and depth stops short of its diners' knees (by less
+            // than the reach); the gradient grows it.
+            objects[t].size.x *= 0.5;
+            objects[t].size.y *= 0.5;
+            let (j, grads) = guidance_cost(&objects, &anchors, &masks, &only_table);
+            assert!(j > 0.0, "room {index}");
+            assert!(grads[t][3] <= 0.0 && grads[t][4] <= 0.0 && grads[t][3] + grads[t][4] < 0.0, "{:?}", grads[t]);
+        }
+        assert!(diners >= 3, "the rooms seat {diners} diners");
     }
 
     #[test]

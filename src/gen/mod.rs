@@ -9,6 +9,7 @@
 mod adamw;
 pub mod against_walls;
 pub mod anchors;
+pub mod at_table;
 pub mod beyond_walls;
 pub mod bodies;
 pub mod boxes_uncovered;
