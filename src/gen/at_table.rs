@@ -1,10 +1,10 @@
 //! J_t (ours): a diner's table reaches over their knees. Every real room of the data that seats a
 //! person on a dining chair stands a dining table in front of them, its top over their knees (the
 //! data places a dining table with its chairs around it, 4 cm off its edge); the sampled layouts
-//! leave about one diner in ten at a table that stops short of them, or none
-//! (docs/RESULTS.md, "Diners at their table"). The term measures, for each person seated on such a
-//! seat, how far their knees are from the footprint of the nearest table of the seat's kind, and
-//! pulls that table's centre towards them.
+//! left about one diner in five at a table that stops short of them (docs/RESULTS.md, "Diners at
+//! their table"). The term measures, for each person seated on such a seat, how far their knees
+//! are from the footprint of the nearest table of the seat's kind, and draws that table towards
+//! them and grows it.
 //!
 //! It knows which seats come with a table ([`table_of_seat`]) and where a sitter's knees are; not
 //! what a table is for anyone else, and it never makes a table: a diner whose layout has none
@@ -17,8 +17,8 @@ use crate::scene::{Action, Category, Scene};
 use glam::DVec2;
 
 /// The table a seat of `category` stands at in the data, if it always stands at one: a dining
-/// chair at a dining table (every diner of the val dining rooms, 272 of 272). A desk's chair is
-/// not (the data turns its sitters away from the desk as often as not), nor a stool.
+/// chair at a dining table (every diner of the val dining rooms, 272 of 272). A bedroom's chair is
+/// not: none of the 20 people seated on one in the val bedrooms has a desk over their knees.
 pub fn table_of_seat(category: Category) -> Option<Category> {
     match category {
         Category::DiningChair => Some(Category::DiningTable),

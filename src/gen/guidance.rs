@@ -1547,7 +1547,7 @@ mod batch_tests {
     }
 
     #[test]
-    fn a_diner_s_table_drawn_away_from_them_is_pulled_back_and_the_data_s_own_costs_nothing() {
+    fn a_diner_s_table_shrunk_short_of_them_is_grown_back_and_the_data_s_own_costs_nothing() {
         // Synthetic dining rooms: every diner's table reaches over their knees, as in the data.
         let only_table = GuidanceConfig {
             motion: 0.0,
