@@ -11,7 +11,7 @@
 //! within [`GuidanceConfig::table_reach`](super::GuidanceConfig::table_reach) (a lone dining
 //! chair, as some real living rooms have) is left as they are.
 
-use super::guidance::{GuidedObject, ObjectGradient, excess_outside};
+use super::guidance::{GuidedObject, ObjectGradient, distance_outside, excess_outside};
 use crate::human::ContactBox;
 use crate::scene::{Action, Category, Scene};
 use glam::DVec2;
@@ -54,14 +54,12 @@ pub fn tables_short_of_knees(objects: &[GuidedObject], knees: &[Vec<DVec2>], rea
                 .iter()
                 .enumerate()
                 .filter(|(_, o)| o.category == table)
-                .map(|(j, o)| (j, excess_outside(o, p)))
-                .min_by(|a, b| a.1.length().total_cmp(&b.1.length()));
-            let Some((j, excess)) = nearest else { continue };
-            let d = excess.length();
+                .map(|(j, o)| (j, distance_outside(o, p)))
+                .min_by(|a, b| a.1.0.total_cmp(&b.1.0));
+            let Some((j, (d, toward))) = nearest else { continue };
             if d > 0.0 && d <= reach {
                 total += d;
-                let (ax, ay) = objects[j].obox().axes();
-                let toward = ax * (excess.x / d) + ay * (excess.y / d);
+                let excess = excess_outside(&objects[j], p);
                 grads[j][0] -= toward.x;
                 grads[j][1] -= toward.y;
                 grads[j][3] -= 0.5 * excess.x.abs() / d;

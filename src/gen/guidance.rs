@@ -745,7 +745,7 @@ pub fn contact_shortfall(
 /// The distance (m) from `p` to the footprint of `o` (0 inside) and its unit direction from the
 /// footprint towards `p` (zero inside): moving the piece's centre that way shortens the distance
 /// at rate 1.
-fn distance_outside(o: &GuidedObject, p: DVec2) -> (f64, DVec2) {
+pub(super) fn distance_outside(o: &GuidedObject, p: DVec2) -> (f64, DVec2) {
     let excess = excess_outside(o, p);
     let d = excess.length();
     if d <= 0.0 {

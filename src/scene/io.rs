@@ -117,16 +117,14 @@ pub fn write_atomic(file: &Path, bytes: &[u8]) -> std::io::Result<()> {
     result
 }
 
-/// serde_json appends " at line L column C"; the error carries those separately.
 /// The JSON path of the value a parse failed at, empty for the document itself: serde_path_to_error
 /// names a value it never reached (a syntax error, a document cut short) `?`.
 pub(crate) fn failed_path<E>(error: &serde_path_to_error::Error<E>) -> String {
-    match error.path().to_string() {
-        path if path == "?" => String::new(),
-        path => path,
-    }
+    let path = error.path().to_string();
+    if path == "?" { String::new() } else { path }
 }
 
+/// serde_json appends " at line L column C"; the error carries those separately.
 fn strip_position(message: &str) -> String {
     match message.rfind(" at line ") {
         Some(i) => message[..i].to_string(),
