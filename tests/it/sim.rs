@@ -418,6 +418,7 @@ fn mujoco_and_rapier_agree_on_the_reference_scenes_shallow_contacts() {
             compared += 1;
         }
     }
-    // Cleaner layouts have fewer: 189 on this version's reference scenes.
-    assert!(compared >= 100, "{compared} shallow contacts compared");
+    // Enough to compare, not a count of the layouts' faults: cleaner layouts have fewer (189 on
+    // the reference scenes of 2026-11, 91 on those of 2026-12-06).
+    assert!(compared >= 50, "{compared} shallow contacts compared");
 }
