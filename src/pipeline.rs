@@ -158,17 +158,23 @@ pub fn rejections_message(r: &Rejections) -> Option<String> {
             let what = c.what.as_deref().unwrap_or("?");
             let text = match c.kind {
                 ViolationKind::Penetration if what == "wall" => format!("{who}'s bones in a wall"),
-                ViolationKind::Penetration => format!("{who}'s bones in a {what}"),
+                ViolationKind::Penetration => format!("{who}'s bones in {}", with_article(what)),
                 ViolationKind::Unsupported => format!("{who} without support"),
-                ViolationKind::ObjectOverlap => format!("a {what} in another piece"),
-                ViolationKind::ObjectWall => format!("a {what} in a wall"),
-                ViolationKind::OutsideFloor => format!("a {what} outside the floor plan"),
-                ViolationKind::Unstable => format!("a {what} unstable"),
+                ViolationKind::ObjectOverlap => format!("{} in another piece", with_article(what)),
+                ViolationKind::ObjectWall => format!("{} in a wall", with_article(what)),
+                ViolationKind::OutsideFloor => format!("{} outside the floor plan", with_article(what)),
+                ViolationKind::Unstable => format!("{} unstable", with_article(what)),
             };
             format!("{text} ({n} of {})", r.layouts)
         })
         .collect();
     Some(format!("no clean layout in {} samples; most often: {}", r.layouts, said.join(", ")))
+}
+
+/// A category's name after "a", or "an" before a vowel: "an armchair", "a wardrobe".
+fn with_article(name: &str) -> String {
+    let vowel = name.starts_with(['a', 'e', 'i', 'o', 'u']);
+    format!("{} {name}", if vowel { "an" } else { "a" })
 }
 
 /// What `generator` says of an input before sampling it, as the command line and Python warn it:
@@ -541,7 +547,7 @@ mod tests {
         let mut scene = generate_room(RoomType::Bedroom, 3, 0, false).scene;
         scene.objects = vec![
             Object::standing("o0", Category::Wardrobe, [1.0, 1.0], [1.0, 0.6, 2.0]),
-            Object::standing("o1", Category::Nightstand, [2.0, 1.0], [0.4, 0.4, 0.5]),
+            Object::standing("o1", Category::Armchair, [2.0, 1.0], [0.8, 0.8, 0.8]),
         ];
         let mut r = Rejections::default();
         assert_eq!(rejections_message(&r), None, "nothing rejected, nothing to say");
@@ -566,7 +572,7 @@ mod tests {
         assert_eq!(
             rejections_message(&r).unwrap(),
             "no clean layout in 3 samples; most often: h1's bones in a wardrobe (2 of 3), h0's bones in a wall (1 of 3), \
-             a nightstand in a wall (1 of 3)"
+             an armchair in a wall (1 of 3)"
         );
     }
 
