@@ -391,6 +391,65 @@ fn main() -> anyhow::Result<()> {
                 vec![sitter("desk", [3.4, 0.55], 0.46, 180.0), walker("door", &[[3.7, 3.3], [0.4, 1.6]])],
             ),
         ),
+        // Four people in conversation on four seats round the middle of a living room, facing
+        // each other 2.2 m apart, and a walker along the wall behind two of them.
+        (
+            "conversation_circle",
+            scene(
+                RoomType::Living,
+                rect(5.0, 4.6),
+                vec![
+                    sitter("north", [2.5, 3.4], 0.44, 180.0),
+                    sitter("south", [2.5, 1.2], 0.44, 0.0),
+                    sitter("east", [3.6, 2.3], 0.44, 90.0),
+                    sitter("west", [1.4, 2.3], 0.44, -90.0),
+                    walker("past", &[[0.4, 4.2], [4.6, 4.2]]),
+                ],
+            ),
+        ),
+        // Two diners face each other across where a small table must stand, in a dining room 2.8 m
+        // deep, and someone walks past the table's end.
+        (
+            "dining_for_two_narrow",
+            scene(
+                RoomType::Dining,
+                rect(3.6, 2.8),
+                vec![
+                    sitter("near", [1.4, 0.75], 0.46, 0.0),
+                    sitter("far", [1.4, 2.05], 0.46, 180.0),
+                    walker("past", &[[3.0, 0.3], [3.0, 2.5]]),
+                ],
+            ),
+        ),
+        // Two sleepers side by side, 1.6 m apart (two single beds), and someone walking between
+        // the beds from their foot to the wall at their head.
+        (
+            "two_singles_walker_between",
+            scene(
+                RoomType::Bedroom,
+                rect(3.6, 4.2),
+                vec![
+                    lier("left", [1.0, 2.6], 0.5, 0.0),
+                    lier("right", [2.6, 2.6], 0.5, 0.0),
+                    walker("between", &[[1.8, 0.3], [1.8, 3.7]]),
+                ],
+            ),
+        ),
+        // A person lying on a sofa, another in an armchair beside it, both facing a person who
+        // touches the top of a TV stand on the far wall, and a walker between them and the TV.
+        (
+            "living_tv_and_nap",
+            scene(
+                RoomType::Living,
+                rect(5.4, 4.2),
+                vec![
+                    lier("nap", [2.4, 0.55], 0.42, 90.0),
+                    sitter("chair", [4.3, 1.0], 0.44, 30.0),
+                    toucher("tv", [2.6, 3.75, 0.62], 0.0),
+                    walker("cross", &[[0.4, 2.3], [5.0, 2.5]]),
+                ],
+            ),
+        ),
     ];
     for (name, s) in inputs {
         if let Some(problem) = shade_sim::scene::validate(&s).first() {
