@@ -8,11 +8,13 @@ use clap::Args;
 use indicatif::ProgressBar;
 use shade_sim::data::read_stats;
 use shade_sim::export::{LossPoint, render_loss_png};
+use shade_sim::generator::Checkpoint;
+use shade_sim::generator::checkpoint::{CONFIG_FILE, parse_meta};
 use shade_sim::generator::train::LogLine;
 use shade_sim::generator::{
     AnchoredYaw, Engine, GenError, ModelConfig, NoiseSchedule, Prediction, TrainObserver, TrainOptions, train,
 };
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
@@ -52,9 +54,9 @@ pub struct TrainArgs {
     /// Peak learning rate (warm-up, then cosine to a tenth).
     #[arg(long, default_value_t = 3e-4)]
     pub lr: f64,
-    /// Model size: small (shipped), medium (wider), deep (8 blocks) or tiny (tests).
-    #[arg(long, default_value = "small")]
-    pub preset: String,
+    /// Model size: small (shipped; the default), medium (wider), deep (8 blocks) or tiny (tests).
+    #[arg(long)]
+    pub preset: Option<String>,
     /// What the denoiser predicts: eps, x0 or v (default: the preset's, x0 for small and tiny).
     #[arg(long, value_parser = by_config_name::<Prediction>)]
     pub prediction: Option<Prediction>,
@@ -123,9 +125,15 @@ pub struct TrainArgs {
     /// Seed of initialisation, batches and noise.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
-    /// Continue the run whose checkpoint is in --out.
+    /// Continue the run whose checkpoint is in --out, with its model config (flags that choose
+    /// one must agree with it).
     #[arg(long)]
     pub resume: bool,
+    /// Start from the weights of the model in this folder instead of random ones (fine-tuning, e.g.
+    /// a shipped model on your own rooms): the architecture and token bounds are its config.json's,
+    /// so the flags that choose them are refused beside it; the optimiser starts afresh.
+    #[arg(long, value_name = "MODEL_DIR")]
+    pub init: Option<PathBuf>,
     /// Minutes between checkpoints.
     #[arg(long, default_value_t = 5.0)]
     pub checkpoint_minutes: f64,
@@ -200,10 +208,11 @@ impl TrainObserver for Bar {
     }
 }
 
-pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
-    let stats = read_stats(&args.data)?;
-    let mut model = ModelConfig::preset(&args.preset, stats.room_type)
-        .ok_or_else(|| anyhow::anyhow!("--preset: unknown preset {:?} (small, medium, deep, tiny)", args.preset))?;
+/// The model config the flags ask for: `--preset`'s, with each architecture flag given.
+fn model_config(args: &TrainArgs, room: shade_sim::scene::RoomType) -> anyhow::Result<ModelConfig> {
+    let preset = args.preset.as_deref().unwrap_or("small");
+    let mut model = ModelConfig::preset(preset, room)
+        .ok_or_else(|| anyhow::anyhow!("--preset: unknown preset {preset:?} (small, medium, deep, tiny)"))?;
     if let Some(prediction) = args.prediction {
         model.prediction = prediction;
     }
@@ -259,6 +268,67 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     }
     model.room_token |= args.room_token;
     model.count_condition |= args.count_condition;
+    Ok(model)
+}
+
+/// The model config of the model `--init` names, which a fine-tuning run keeps: refused beside
+/// `--resume` (the run in --out records its start) and beside any flag that would choose another
+/// architecture.
+fn initial_model(args: &TrainArgs, dir: &Path) -> anyhow::Result<ModelConfig> {
+    anyhow::ensure!(!args.resume, "--init: a resumed run continues from its own checkpoint; leave out --init");
+    if let Some(flag) = architecture_flag(args) {
+        anyhow::bail!("--init: the model's architecture is {}'s; leave out {flag}", dir.display());
+    }
+    Ok(Checkpoint::load(dir)?.meta.model)
+}
+
+/// The model config of the run `--resume` continues when no flag chooses one: its own (a
+/// fine-tuned run's is its start's, which no preset gives).
+fn resumed_model(out: &Path) -> anyhow::Result<Option<ModelConfig>> {
+    let config = out.join(CONFIG_FILE);
+    if !config.exists() {
+        return Ok(None);
+    }
+    let text = std::fs::read_to_string(&config).map_err(|e| anyhow::anyhow!("{}: {e}", config.display()))?;
+    Ok(Some(parse_meta(&text, &config)?.model))
+}
+
+/// The first flag given that chooses the model's architecture.
+fn architecture_flag(args: &TrainArgs) -> Option<&'static str> {
+    let given = [
+        ("--preset", args.preset.is_some()),
+        ("--prediction", args.prediction.is_some()),
+        ("--schedule", args.schedule.is_some()),
+        ("--anchored-yaw", args.anchored_yaw.is_some()),
+        ("--wall-features", args.wall_features.is_some()),
+        ("--slot-roles", args.slot_roles.is_some()),
+        ("--world-features", args.world_features.is_some()),
+        ("--fourier-bands", args.fourier_bands.is_some()),
+        ("--noise-scaled-features", args.noise_scaled_features.is_some()),
+        ("--gap-features", args.gap_features.is_some()),
+        ("--relation-bias", args.relation_bias.is_some()),
+        ("--relation-values", args.relation_values.is_some()),
+        ("--self-condition", args.self_condition.is_some()),
+        ("--min-snr", args.min_snr.is_some()),
+        ("--min-snr-floor", args.min_snr_floor.is_some()),
+        ("--expert-below", args.expert_below.is_some()),
+        ("--room-token", args.room_token),
+        ("--count-condition", args.count_condition),
+    ];
+    given.into_iter().find(|(_, given)| *given).map(|(flag, _)| flag)
+}
+
+pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
+    let stats = read_stats(&args.data)?;
+    let resumed = match args.resume && architecture_flag(args).is_none() {
+        true => resumed_model(&args.out)?,
+        false => None,
+    };
+    let model = match (&args.init, resumed) {
+        (Some(dir), _) => initial_model(args, dir)?,
+        (None, Some(model)) => model,
+        (None, None) => model_config(args, stats.room_type)?,
+    };
     let state = args.out.join(shade_sim::generator::checkpoint::STATE_META_FILE);
     anyhow::ensure!(
         args.resume || !state.exists(),
@@ -278,6 +348,7 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     opts.lr = args.lr;
     opts.seed = args.seed;
     opts.resume = args.resume;
+    opts.init = args.init.clone();
     anyhow::ensure!(
         args.category_balance.is_finite() && args.category_balance >= 0.0,
         "--category-balance: must be a non-negative number"

@@ -49,6 +49,20 @@ pub struct TrainingInfo {
     pub wall_seconds: f64,
     /// Last validation loss of the EMA weights.
     pub val_loss: Option<f64>,
+    /// The model the run started from (`train --init`), when it did not start from random
+    /// weights; absent in files written before fine-tuning existed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub init: Option<InitialWeights>,
+}
+
+/// The model folder a fine-tuning run started from, and the hash of the weights it took.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InitialWeights {
+    /// The folder, as given.
+    pub model: String,
+    /// FNV-1a hash of its `model.safetensors` (hex).
+    pub weights_hash: String,
 }
 
 /// `config.json`.

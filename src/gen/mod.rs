@@ -45,7 +45,7 @@ pub mod train;
 pub mod walls;
 
 pub use adamw::{AdamW, AdamWConfig};
-pub use checkpoint::{Checkpoint, CheckpointMeta, SamplingDefaults, TrainingInfo};
+pub use checkpoint::{Checkpoint, CheckpointMeta, InitialWeights, SamplingDefaults, TrainingInfo};
 pub use config::{AnchoredYaw, ModelConfig, NoiseSchedule, Prediction};
 pub use count_prior::CountPrior;
 pub use dataset::{Example, HostBatch, NoisyBatch, RelationPair, load_split, split_files};

@@ -6,20 +6,22 @@
 //!
 //! Step s draws its batch, augmentations, diffusion steps and noise from `Rng::for_item(seed, s)`,
 //! and checkpoints are taken only right after a log line, so a resumed run continues exactly as an
-//! uninterrupted one would.
+//! uninterrupted one would. A run starts from random weights, or from a trained model's
+//! ([`TrainOptions::init`], fine-tuning), whose architecture and token bounds it keeps.
 
 use super::adamw::{AdamW, AdamWConfig};
 use super::checkpoint::{
-    CONFIG_FILE, CheckpointMeta, MODEL_FORMAT, STATE_FILE, STATE_META_FILE, SamplingDefaults, TrainingInfo,
-    WEIGHTS_FILE, fnv1a_hex, read_tensors, write_json, write_tensors,
+    CONFIG_FILE, Checkpoint, CheckpointMeta, InitialWeights, MODEL_FORMAT, STATE_FILE, STATE_META_FILE,
+    SamplingDefaults, TrainingInfo, WEIGHTS_FILE, fnv1a_hex, parse_meta, read_tensors, write_json, write_tensors,
 };
 use super::dataset::{Example, HostBatch, NoisyBatch, balance_categories, load_split};
 use super::engine::{Engine, Gradients};
 use super::flat::ParamLayout;
 use super::{Bounds, CountPrior, Denoiser, Dihedral, GenError, ModelConfig, Params, Schedule, SeenCounts, SeenFloors};
 use crate::data::{DatasetStats, Rng, read_stats};
+use candle_core::Tensor;
 use serde::{Deserialize, Serialize};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
@@ -65,6 +67,11 @@ pub struct TrainOptions {
     pub checkpoint_every: Duration,
     /// Continue from the checkpoint in `out`.
     pub resume: bool,
+    /// A model folder whose weights the run starts from instead of random ones (fine-tuning; None,
+    /// the default, starts from random weights): its `config.json` must have the run's model
+    /// config, the rooms are encoded in its token bounds, and the optimiser starts afresh. A
+    /// resumed run takes it from the checkpoint it continues.
+    pub init: Option<PathBuf>,
     /// The command line, recorded in config.json.
     pub command: String,
     /// Loss weight of rare categories' slots: (median share / share)^this (`balance_categories`);
@@ -86,7 +93,8 @@ pub struct TrainOptions {
     /// default, none). Validation scenes get none.
     pub displaced_pieces: f64,
     /// The sampler `generate` uses for the model by default, recorded in config.json's `sampling`
-    /// (None, the default: DDPM's chain).
+    /// (None, the default: the run's start's — a resumed run's own, an `init` model's — else DDPM's
+    /// chain).
     pub sampling: Option<SamplingDefaults>,
     /// Where gradients come from.
     pub engine: Engine,
@@ -112,6 +120,7 @@ impl TrainOptions {
             val_scenes: 256,
             checkpoint_every: Duration::from_secs(300),
             resume: false,
+            init: None,
             command: String::new(),
             category_balance: 0.0,
             input_perturbation: 0.0,
@@ -209,6 +218,12 @@ fn bounds_of(stats: &DatasetStats, data: &Path) -> Result<Bounds, GenError> {
 /// with the bounds they are encoded in (from the data's train split), the data's stats and the
 /// hash that identifies them (`stats.json`, with the extra and joint ones when there are any).
 pub fn training_rooms(opts: &TrainOptions) -> Result<TrainingRooms, GenError> {
+    training_rooms_in(opts, None)
+}
+
+/// [`training_rooms`], encoded in `bounds` when given (a fine-tuned model's, its start's) instead
+/// of the data's.
+fn training_rooms_in(opts: &TrainOptions, bounds: Option<&Bounds>) -> Result<TrainingRooms, GenError> {
     let cfg = &opts.model;
     let stats = read_stats(&opts.data)?;
     let stats_bytes =
@@ -220,7 +235,10 @@ pub fn training_rooms(opts: &TrainOptions) -> Result<TrainingRooms, GenError> {
             message: format!("dataset is {} but the model is for {}", stats.room_type, cfg.room_type),
         });
     }
-    let bounds = bounds_of(&stats, &opts.data)?;
+    let bounds = match bounds {
+        Some(b) => b.clone(),
+        None => bounds_of(&stats, &opts.data)?,
+    };
     let mut train_set = load_split(&opts.data, "train", &bounds, cfg)?;
     let mut hashed = stats_bytes.clone();
     let more = opts.extra_data.iter().map(|d| (d, &["train", "val", "test"][..]));
@@ -277,7 +295,21 @@ pub fn train(
     if let Some(problem) = cfg.problem() {
         return Err(GenError::checkpoint(&opts.out, format!("bad model config: {problem}")));
     }
-    let rooms = training_rooms(opts)?;
+    // Where the weights start: a resumed run's checkpoint says (its start's bounds, record and
+    // sampler are kept); else the model `init` names (its bounds and sampler), or random weights.
+    let resumed = opts.resume.then(|| read_config(&opts.out)).transpose()?;
+    let (start_bounds, started_from, start_sampling, start_tensors) = match (resumed, &opts.init) {
+        (Some(meta), _) => {
+            (meta.training.init.is_some().then_some(meta.bounds), meta.training.init, meta.sampling, None)
+        }
+        (None, Some(dir)) => {
+            let (meta, record, tensors) = initial_weights(dir, cfg)?;
+            (Some(meta.bounds), Some(record), meta.sampling, Some(tensors))
+        }
+        (None, None) => (None, None, None, None),
+    };
+    let sampling = opts.sampling.clone().or(start_sampling);
+    let rooms = training_rooms_in(opts, start_bounds.as_ref())?;
     let seen_counts = rooms.seen_counts();
     let seen_floors = rooms.seen_floors();
     let TrainingRooms { examples: mut train_set, bounds, stats, data_hash } = rooms;
@@ -292,7 +324,10 @@ pub fn train(
     std::fs::create_dir_all(&opts.out).map_err(|e| GenError::io(&opts.out, e))?;
 
     let schedule = Schedule::of(cfg);
-    let mut init = Params::random(opts.seed);
+    let mut init = match start_tensors {
+        Some(tensors) => Params::loaded(tensors),
+        None => Params::random(opts.seed),
+    };
     Denoiser::new(cfg, &mut init)?;
     let (layout, mut params) = ParamLayout::of(&init.snapshot()?)?;
     let mut engine = Gradients::new(opts.engine, cfg, &layout)?;
@@ -325,6 +360,7 @@ pub fn train(
         category_balance: opts.category_balance,
         wall_seconds: seconds,
         val_loss,
+        init: started_from.clone(),
     };
     observer.started(step, opts.steps, train_set.len(), layout.len());
 
@@ -383,7 +419,7 @@ pub fn train(
                     count_prior: count_prior.clone(),
                     seen_counts: Some(seen_counts.clone()),
                     seen_floors: Some(seen_floors.clone()),
-                    sampling: opts.sampling.clone(),
+                    sampling: sampling.clone(),
                 };
                 let state = StateMeta { step, adam_steps: adam.steps, seconds, val_loss, data_hash: data_hash.clone() };
                 save(&opts.out, &meta, &state, &layout, &params, &adam, &ema)?;
@@ -396,6 +432,29 @@ pub fn train(
         }
     }
     Ok(TrainOutcome { step, stopped, val_loss, seconds })
+}
+
+/// The `config.json`, record and weights of the model in `dir` that a run of `cfg` starts from:
+/// its config must hold `cfg` (a checkpoint of another architecture has other tensors).
+fn initial_weights(
+    dir: &Path,
+    cfg: &ModelConfig,
+) -> Result<(CheckpointMeta, InitialWeights, HashMap<String, Tensor>), GenError> {
+    let checkpoint = Checkpoint::load(dir)?;
+    if checkpoint.meta.model != *cfg {
+        return Err(GenError::checkpoint(dir.join(CONFIG_FILE), "model config differs from the one asked for"));
+    }
+    let path = dir.join(WEIGHTS_FILE);
+    let bytes = std::fs::read(&path).map_err(|e| GenError::io(&path, e))?;
+    let record = InitialWeights { model: dir.display().to_string(), weights_hash: fnv1a_hex(&bytes) };
+    Ok((checkpoint.meta, record, read_tensors(&bytes, &path)?))
+}
+
+/// The checked `config.json` of the model folder `dir`.
+fn read_config(dir: &Path) -> Result<CheckpointMeta, GenError> {
+    let path = dir.join(CONFIG_FILE);
+    let text = std::fs::read_to_string(&path).map_err(|e| GenError::io(&path, e))?;
+    parse_meta(&text, &path)
 }
 
 /// A random batch (with a random symmetry per scene when `augment`).
@@ -479,8 +538,7 @@ fn restore(
         return Err(GenError::checkpoint(&meta_path, "was trained on a different dataset (stats.json differs)"));
     }
     let config_path = opts.out.join(CONFIG_FILE);
-    let config_text = std::fs::read_to_string(&config_path).map_err(|e| GenError::io(&config_path, e))?;
-    let meta = super::checkpoint::parse_meta(&config_text, &config_path)?;
+    let meta = read_config(&opts.out)?;
     if meta.model != opts.model {
         return Err(GenError::checkpoint(&config_path, "model config differs from the one asked for"));
     }

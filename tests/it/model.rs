@@ -119,6 +119,70 @@ fn the_fused_and_candle_engines_follow_the_same_loss_curve_and_share_checkpoints
     assert_eq!((resumed.step, resumed.stopped), (50, false));
 }
 
+/// A run started from a trained model (fine-tuning) starts from its weights, encodes its rooms in
+/// that model's token bounds, takes its sampler, records where it started, and keeps all of it
+/// when resumed; a model of another architecture is refused.
+#[test]
+fn a_run_started_from_a_model_takes_its_weights_and_bounds_and_records_it() {
+    use shade_sim::generator::checkpoint::{fnv1a_hex, read_tensors};
+    use shade_sim::generator::{InitialWeights, data_bounds};
+    let dir = tempfile::tempdir().unwrap();
+    let data = dataset(dir.path(), RoomType::Bedroom);
+    let other = dir.path().join("other-data");
+    let synth =
+        SynthConfig { room: RoomType::Bedroom, scenes: 12, seed: 5, spacing: Default::default(), command: "x".into() };
+    synthesize(&synth, &other, None, &|_| {}).unwrap();
+    assert_ne!(data_bounds(&data).unwrap(), data_bounds(&other).unwrap(), "the test needs other bounds");
+    let start = dir.path().join("start");
+    let mut first = options(&data, &start);
+    (first.seed, first.sampling) = (1, Some(shade_sim::generator::SamplingDefaults { geometry_eta: 1.5 }));
+    train(&first, &AtomicBool::new(false), &mut ()).unwrap();
+
+    // At a learning rate of 1e-12 the weights cannot move: what the run ends with is where it began.
+    let run = |name: &str, init: Option<&Path>| {
+        let mut o = options(&other, &dir.path().join(name));
+        (o.lr, o.steps, o.init) = (1e-12, 2, init.map(Path::to_path_buf));
+        o
+    };
+    train(&run("tuned", Some(&start)), &AtomicBool::new(false), &mut ()).unwrap();
+    train(&run("fresh", None), &AtomicBool::new(false), &mut ()).unwrap();
+    let weights = |name: &str| {
+        let path = dir.path().join(name).join("model.safetensors");
+        let tensors = read_tensors(&std::fs::read(&path).unwrap(), &path).unwrap();
+        let mut names: Vec<_> = tensors.keys().cloned().collect();
+        names.sort();
+        names.iter().flat_map(|n| tensors[n].flatten_all().unwrap().to_vec1::<f32>().unwrap()).collect::<Vec<f32>>()
+    };
+    let largest_change = |a: &[f32], b: &[f32]| a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0f32, f32::max);
+    let (begun, tuned, fresh) = (weights("start"), weights("tuned"), weights("fresh"));
+    assert!(largest_change(&begun, &tuned) < 1e-6, "{}", largest_change(&begun, &tuned));
+    assert!(largest_change(&begun, &fresh) > 1e-2, "another seed's random weights are far from the start's");
+
+    let meta = Checkpoint::load(&dir.path().join("tuned")).unwrap().meta;
+    let started = Checkpoint::load(&start).unwrap().meta;
+    assert_eq!(meta.bounds, started.bounds, "the start's bounds, not the data's");
+    assert_eq!(meta.sampling, started.sampling, "the start's sampler");
+    let hash = fnv1a_hex(&std::fs::read(start.join("model.safetensors")).unwrap());
+    let record = InitialWeights { model: start.display().to_string(), weights_hash: hash };
+    assert_eq!(meta.training.init.as_ref(), Some(&record));
+    assert_eq!(Checkpoint::load(&dir.path().join("fresh")).unwrap().meta.training.init, None);
+
+    // Resumed, the run keeps its start's bounds and record.
+    let mut more = run("tuned", None);
+    (more.resume, more.steps) = (true, 4);
+    assert_eq!(train(&more, &AtomicBool::new(false), &mut ()).unwrap().step, 4);
+    let resumed = Checkpoint::load(&dir.path().join("tuned")).unwrap().meta;
+    assert_eq!((resumed.bounds, resumed.training.init), (started.bounds, Some(record)));
+    assert_eq!(resumed.sampling, started.sampling);
+
+    // A model of another architecture has other tensors: refused, naming its config.
+    let mut wider = run("wider", Some(&start));
+    wider.model.d_model *= 2;
+    let err = train(&wider, &AtomicBool::new(false), &mut ()).unwrap_err().to_string();
+    assert!(err.contains("start/config.json") && err.contains("model config differs"), "{err}");
+    assert!(!dir.path().join("wider").exists(), "nothing written");
+}
+
 fn train_cli(data: &Path, out: &Path) -> std::process::Output {
     train_cli_with(data, out, &[])
 }
@@ -396,6 +460,32 @@ fn train_writes_a_checkpoint_and_generate_is_deterministic() {
         assert!(stderr(&o).starts_with(want) && stderr(&o).lines().count() == 1, "{}", stderr(&o));
         assert!(!dir.path().join("refused").exists(), "nothing written");
     }
+
+    // Fine-tuning the model just trained, as a user would a shipped one: the flags that choose an
+    // architecture are refused beside --init, and so are --resume and a folder without a model;
+    // then the run takes the model's architecture.
+    let (d, m) = (data.to_str().unwrap(), model.to_str().unwrap());
+    let tuned = dir.path().join("tuned");
+    let t = tuned.to_str().unwrap();
+    let missing = dir.path().join("missing");
+    let base = ["train", "--data", d, "--out", t, "--steps", "2", "--batch", "4", "--init"];
+    for (extra, want) in [
+        (vec![m, "--preset", "tiny"], format!("error: --init: the model's architecture is {m}'s; leave out --preset")),
+        (
+            vec![m, "--resume"],
+            "error: --init: a resumed run continues from its own checkpoint; leave out --init".into(),
+        ),
+        (vec![missing.to_str().unwrap()], format!("error: {}: ", missing.join("config.json").display())),
+    ] {
+        let o = shade_sim(&[&base[..], &extra].concat());
+        assert_eq!(o.status.code(), Some(2));
+        assert!(stderr(&o).starts_with(&want) && stderr(&o).lines().count() == 1, "{}", stderr(&o));
+        assert!(!tuned.exists(), "nothing written");
+    }
+    let o = shade_sim(&[&base[..], &[m]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let tuned_meta = Checkpoint::load(&tuned).unwrap().meta;
+    assert_eq!((tuned_meta.model, tuned_meta.training.steps), (ckpt.meta.model.clone(), 2));
 
     let input = root().join("scenes/examples/bedroom_rect.json");
     let generate = |seed: &str, out: &Path| {
