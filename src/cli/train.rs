@@ -252,6 +252,14 @@ fn model_config(args: &TrainArgs, room: shade_sim::scene::RoomType) -> anyhow::R
     if let Some(self_condition) = args.self_condition {
         model.self_condition = self_condition;
     }
+    model.room_token |= args.room_token;
+    model.count_condition |= args.count_condition;
+    with_training_flags(model, args)
+}
+
+/// `model` with what `--min-snr`, `--min-snr-floor` and `--expert-below` ask training to weigh
+/// and draw, where given.
+fn with_training_flags(mut model: ModelConfig, args: &TrainArgs) -> anyhow::Result<ModelConfig> {
     anyhow::ensure!(args.min_snr.is_none_or(|g| g.is_finite() && g > 0.0), "--min-snr: must be a positive number");
     if args.min_snr.is_some() {
         model.min_snr = args.min_snr;
@@ -266,8 +274,6 @@ fn model_config(args: &TrainArgs, room: shade_sim::scene::RoomType) -> anyhow::R
     if args.expert_below.is_some() {
         model.expert_below = args.expert_below;
     }
-    model.room_token |= args.room_token;
-    model.count_condition |= args.count_condition;
     Ok(model)
 }
 
@@ -279,21 +285,25 @@ fn initial_model(args: &TrainArgs, dir: &Path) -> anyhow::Result<ModelConfig> {
     if let Some(flag) = architecture_flag(args) {
         anyhow::bail!("--init: the model's architecture is {}'s; leave out {flag}", dir.display());
     }
-    Ok(Checkpoint::load(dir)?.meta.model)
+    // What training weighs and which steps it draws are the run's own (a low-noise expert
+    // fine-tuned from a model of the whole chain).
+    with_training_flags(Checkpoint::load(dir)?.meta.model, args)
 }
 
-/// The model config of the run `--resume` continues when no flag chooses one: its own (a
-/// fine-tuned run's is its start's, which no preset gives).
-fn resumed_model(out: &Path) -> anyhow::Result<Option<ModelConfig>> {
+/// The model config of the run `--resume` continues when no flag chooses its network: its own (a
+/// fine-tuned run's is its start's, which no preset gives), with the training flags given (which
+/// the resumed run then refuses if they differ from its own).
+fn resumed_model(out: &Path, args: &TrainArgs) -> anyhow::Result<Option<ModelConfig>> {
     let config = out.join(CONFIG_FILE);
     if !config.exists() {
         return Ok(None);
     }
     let text = std::fs::read_to_string(&config).map_err(|e| anyhow::anyhow!("{}: {e}", config.display()))?;
-    Ok(Some(parse_meta(&text, &config)?.model))
+    Ok(Some(with_training_flags(parse_meta(&text, &config)?.model, args)?))
 }
 
-/// The first flag given that chooses the model's architecture.
+/// The first flag given that chooses the model's network (not `--min-snr`, `--min-snr-floor` or
+/// `--expert-below`, which only change what training weighs and draws).
 fn architecture_flag(args: &TrainArgs) -> Option<&'static str> {
     let given = [
         ("--preset", args.preset.is_some()),
@@ -309,9 +319,6 @@ fn architecture_flag(args: &TrainArgs) -> Option<&'static str> {
         ("--relation-bias", args.relation_bias.is_some()),
         ("--relation-values", args.relation_values.is_some()),
         ("--self-condition", args.self_condition.is_some()),
-        ("--min-snr", args.min_snr.is_some()),
-        ("--min-snr-floor", args.min_snr_floor.is_some()),
-        ("--expert-below", args.expert_below.is_some()),
         ("--room-token", args.room_token),
         ("--count-condition", args.count_condition),
     ];
@@ -321,7 +328,7 @@ fn architecture_flag(args: &TrainArgs) -> Option<&'static str> {
 pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
     let stats = read_stats(&args.data)?;
     let resumed = match args.resume && architecture_flag(args).is_none() {
-        true => resumed_model(&args.out)?,
+        true => resumed_model(&args.out, args)?,
         false => None,
     };
     let model = match (&args.init, resumed) {

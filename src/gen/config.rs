@@ -226,6 +226,19 @@ impl Prediction {
 }
 
 impl ModelConfig {
+    /// Whether a model of `other` has this one's network (the same tensors, meaning the same): the
+    /// configs may differ only in what training weighs and draws (`min_snr`, `min_snr_floor`,
+    /// `expert_below`), as a low-noise expert fine-tuned from a model of the whole chain does.
+    pub fn same_network(&self, other: &ModelConfig) -> bool {
+        let trained_as_other = ModelConfig {
+            min_snr: other.min_snr,
+            min_snr_floor: other.min_snr_floor,
+            expert_below: other.expert_below,
+            ..self.clone()
+        };
+        trained_as_other == *other
+    }
+
     /// The shipped size: d 128, 4 blocks (≈ 1.3 M parameters, ≈ 5 MB).
     pub fn small(room_type: RoomType) -> ModelConfig {
         ModelConfig {

@@ -68,9 +68,10 @@ pub struct TrainOptions {
     /// Continue from the checkpoint in `out`.
     pub resume: bool,
     /// A model folder whose weights the run starts from instead of random ones (fine-tuning; None,
-    /// the default, starts from random weights): its `config.json` must have the run's model
-    /// config, the rooms are encoded in its token bounds, and the optimiser starts afresh. A
-    /// resumed run takes it from the checkpoint it continues.
+    /// the default, starts from random weights): its `config.json` must have the run's network
+    /// ([`ModelConfig::same_network`]: only the loss weights and the steps trained may differ), the
+    /// rooms are encoded in its token bounds, and the optimiser starts afresh. A resumed run takes
+    /// it from the checkpoint it continues.
     pub init: Option<PathBuf>,
     /// The command line, recorded in config.json.
     pub command: String,
@@ -435,13 +436,14 @@ pub fn train(
 }
 
 /// The `config.json`, record and weights of the model in `dir` that a run of `cfg` starts from:
-/// its config must hold `cfg` (a checkpoint of another architecture has other tensors).
+/// its network must be `cfg`'s ([`ModelConfig::same_network`]: a checkpoint of another
+/// architecture has other tensors).
 fn initial_weights(
     dir: &Path,
     cfg: &ModelConfig,
 ) -> Result<(CheckpointMeta, InitialWeights, HashMap<String, Tensor>), GenError> {
     let checkpoint = Checkpoint::load(dir)?;
-    if checkpoint.meta.model != *cfg {
+    if !checkpoint.meta.model.same_network(cfg) {
         return Err(GenError::checkpoint(dir.join(CONFIG_FILE), "model config differs from the one asked for"));
     }
     let path = dir.join(WEIGHTS_FILE);

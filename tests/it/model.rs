@@ -121,7 +121,8 @@ fn the_fused_and_candle_engines_follow_the_same_loss_curve_and_share_checkpoints
 
 /// A run started from a trained model (fine-tuning) starts from its weights, encodes its rooms in
 /// that model's token bounds, takes its sampler, records where it started, and keeps all of it
-/// when resumed; a model of another architecture is refused.
+/// when resumed; a model of another architecture is refused, a low-noise expert of the same
+/// network is not.
 #[test]
 fn a_run_started_from_a_model_takes_its_weights_and_bounds_and_records_it() {
     use shade_sim::generator::checkpoint::{fnv1a_hex, read_tensors};
@@ -181,6 +182,11 @@ fn a_run_started_from_a_model_takes_its_weights_and_bounds_and_records_it() {
     let err = train(&wider, &AtomicBool::new(false), &mut ()).unwrap_err().to_string();
     assert!(err.contains("start/config.json") && err.contains("model config differs"), "{err}");
     assert!(!dir.path().join("wider").exists(), "nothing written");
+    // A low-noise expert fine-tuned from it has its network, trained on the least noisy steps.
+    let mut expert = run("expert", Some(&start));
+    expert.model.expert_below = Some(3);
+    train(&expert, &AtomicBool::new(false), &mut ()).unwrap();
+    assert_eq!(Checkpoint::load(&dir.path().join("expert")).unwrap().meta.model.expert_below, Some(3));
 }
 
 fn train_cli(data: &Path, out: &Path) -> std::process::Output {
@@ -486,6 +492,29 @@ fn train_writes_a_checkpoint_and_generate_is_deterministic() {
     assert!(o.status.success(), "{}", stderr(&o));
     let tuned_meta = Checkpoint::load(&tuned).unwrap().meta;
     assert_eq!((tuned_meta.model, tuned_meta.training.steps), (ckpt.meta.model.clone(), 2));
+    // Resumed with no flag, the run keeps the model config it started with; --expert-below is
+    // what training draws, not the network: a low-noise expert fine-tuned from the model.
+    let o = shade_sim(&["train", "--data", d, "--out", t, "--steps", "3", "--batch", "4", "--resume"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let expert = dir.path().join("expert");
+    let e = expert.to_str().unwrap();
+    let o = shade_sim(&[
+        "train",
+        "--data",
+        d,
+        "--out",
+        e,
+        "--steps",
+        "2",
+        "--batch",
+        "4",
+        "--init",
+        m,
+        "--expert-below",
+        "5",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(Checkpoint::load(&expert).unwrap().meta.model.expert_below, Some(5));
 
     let input = root().join("scenes/examples/bedroom_rect.json");
     let generate = |seed: &str, out: &Path| {
