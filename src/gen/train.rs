@@ -7,7 +7,7 @@
 //! Step s draws its batch, augmentations, diffusion steps and noise from `Rng::for_item(seed, s)`,
 //! and checkpoints are taken only right after a log line, so a resumed run continues exactly as an
 //! uninterrupted one would. A run starts from random weights, or from a trained model's
-//! ([`TrainOptions::init`], fine-tuning), whose architecture and token bounds it keeps.
+//! ([`TrainOptions::init`], fine-tuning), whose network, token bounds and sampler it keeps.
 
 use super::adamw::{AdamW, AdamWConfig};
 use super::checkpoint::{
