@@ -13,8 +13,8 @@
 //! Run: `cargo run --release --example record_training_rooms -- MODEL_DIR DATA [--extra-data DIR]…
 //! [--joint-data DIR]…` (the folders the model's `train` command named).
 
-use anyhow::{Context, bail};
-use shade_sim::generator::checkpoint::{CONFIG_FILE, parse_meta, write_json};
+use anyhow::bail;
+use shade_sim::generator::checkpoint::{CONFIG_FILE, read_meta, write_json};
 use shade_sim::generator::{TrainOptions, training_rooms};
 use std::path::{Path, PathBuf};
 
@@ -23,8 +23,7 @@ fn main() -> anyhow::Result<()> {
     let usage = "usage: record_training_rooms MODEL_DIR DATA [--extra-data DIR]… [--joint-data DIR]…";
     let [model, data, rest @ ..] = &args[..] else { bail!(usage) };
     let config = Path::new(model).join(CONFIG_FILE);
-    let text = std::fs::read_to_string(&config).with_context(|| config.display().to_string())?;
-    let mut meta = parse_meta(&text, &config)?;
+    let mut meta = read_meta(Path::new(model))?;
     let mut opts = TrainOptions::new(PathBuf::from(data), PathBuf::from(model), meta.model.clone());
     for pair in rest.chunks(2) {
         match pair {

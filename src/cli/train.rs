@@ -8,8 +8,7 @@ use clap::Args;
 use indicatif::ProgressBar;
 use shade_sim::data::read_stats;
 use shade_sim::export::{LossPoint, render_loss_png};
-use shade_sim::generator::Checkpoint;
-use shade_sim::generator::checkpoint::{CONFIG_FILE, parse_meta};
+use shade_sim::generator::checkpoint::{CONFIG_FILE, read_meta};
 use shade_sim::generator::train::LogLine;
 use shade_sim::generator::{
     AnchoredYaw, Engine, GenError, ModelConfig, NoiseSchedule, Prediction, TrainObserver, TrainOptions, train,
@@ -130,8 +129,9 @@ pub struct TrainArgs {
     #[arg(long)]
     pub resume: bool,
     /// Start from the weights of the model in this folder instead of random ones (fine-tuning, e.g.
-    /// a shipped model on your own rooms): the architecture and token bounds are its config.json's,
-    /// so the flags that choose them are refused beside it; the optimiser starts afresh.
+    /// a shipped model on your own rooms): its network, token bounds and sampler are kept, so the
+    /// flags that choose a network are refused beside it (--min-snr, --min-snr-floor and
+    /// --expert-below may differ); the optimiser starts afresh.
     #[arg(long, value_name = "MODEL_DIR")]
     pub init: Option<PathBuf>,
     /// Minutes between checkpoints.
@@ -287,19 +287,17 @@ fn initial_model(args: &TrainArgs, dir: &Path) -> anyhow::Result<ModelConfig> {
     }
     // What training weighs and which steps it draws are the run's own (a low-noise expert
     // fine-tuned from a model of the whole chain).
-    with_training_flags(Checkpoint::load(dir)?.meta.model, args)
+    with_training_flags(read_meta(dir)?.model, args)
 }
 
 /// The model config of the run `--resume` continues when no flag chooses its network: its own (a
 /// fine-tuned run's is its start's, which no preset gives), with the training flags given (which
 /// the resumed run then refuses if they differ from its own).
 fn resumed_model(out: &Path, args: &TrainArgs) -> anyhow::Result<Option<ModelConfig>> {
-    let config = out.join(CONFIG_FILE);
-    if !config.exists() {
+    if !out.join(CONFIG_FILE).exists() {
         return Ok(None);
     }
-    let text = std::fs::read_to_string(&config).map_err(|e| anyhow::anyhow!("{}: {e}", config.display()))?;
-    Ok(Some(with_training_flags(parse_meta(&text, &config)?.model, args)?))
+    Ok(Some(with_training_flags(read_meta(out)?.model, args)?))
 }
 
 /// The first flag given that chooses the model's network (not `--min-snr`, `--min-snr-floor` or

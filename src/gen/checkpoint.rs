@@ -130,9 +130,7 @@ pub const STATE_META_FILE: &str = "train_state.json";
 impl Checkpoint {
     /// Loads the model in `dir`.
     pub fn load(dir: &Path) -> Result<Checkpoint, GenError> {
-        let config = dir.join(CONFIG_FILE);
-        let text = std::fs::read_to_string(&config).map_err(|e| GenError::io(&config, e))?;
-        let meta = parse_meta(&text, &config)?;
+        let meta = read_meta(dir)?;
         let weights = dir.join(WEIGHTS_FILE);
         let bytes = std::fs::read(&weights).map_err(|e| GenError::io(&weights, e))?;
         Self::from_parts(meta, &bytes, &weights)
@@ -165,6 +163,13 @@ impl Checkpoint {
         let denoiser = Denoiser::new(&meta.model, &mut Params::loaded(tensors)).map_err(|e| at(e, origin))?;
         Ok(Checkpoint { meta, denoiser })
     }
+}
+
+/// The checked `config.json` of the model folder `dir`, without its weights.
+pub fn read_meta(dir: &Path) -> Result<CheckpointMeta, GenError> {
+    let config = dir.join(CONFIG_FILE);
+    let text = std::fs::read_to_string(&config).map_err(|e| GenError::io(&config, e))?;
+    parse_meta(&text, &config)
 }
 
 /// Parses and checks `config.json` text.

@@ -12,7 +12,7 @@
 use super::adamw::{AdamW, AdamWConfig};
 use super::checkpoint::{
     CONFIG_FILE, Checkpoint, CheckpointMeta, InitialWeights, MODEL_FORMAT, STATE_FILE, STATE_META_FILE,
-    SamplingDefaults, TrainingInfo, WEIGHTS_FILE, fnv1a_hex, parse_meta, read_tensors, write_json, write_tensors,
+    SamplingDefaults, TrainingInfo, WEIGHTS_FILE, fnv1a_hex, read_meta, read_tensors, write_json, write_tensors,
 };
 use super::dataset::{Example, HostBatch, NoisyBatch, balance_categories, load_split};
 use super::engine::{Engine, Gradients};
@@ -298,7 +298,7 @@ pub fn train(
     }
     // Where the weights start: a resumed run's checkpoint says (its start's bounds, record and
     // sampler are kept); else the model `init` names (its bounds and sampler), or random weights.
-    let resumed = opts.resume.then(|| read_config(&opts.out)).transpose()?;
+    let resumed = opts.resume.then(|| read_meta(&opts.out)).transpose()?;
     let (start_bounds, started_from, start_sampling, start_tensors) = match (resumed, &opts.init) {
         (Some(meta), _) => {
             (meta.training.init.is_some().then_some(meta.bounds), meta.training.init, meta.sampling, None)
@@ -442,21 +442,16 @@ fn initial_weights(
     dir: &Path,
     cfg: &ModelConfig,
 ) -> Result<(CheckpointMeta, InitialWeights, HashMap<String, Tensor>), GenError> {
-    let checkpoint = Checkpoint::load(dir)?;
-    if !checkpoint.meta.model.same_network(cfg) {
+    let meta = read_meta(dir)?;
+    if !meta.model.same_network(cfg) {
         return Err(GenError::checkpoint(dir.join(CONFIG_FILE), "model config differs from the one asked for"));
     }
     let path = dir.join(WEIGHTS_FILE);
     let bytes = std::fs::read(&path).map_err(|e| GenError::io(&path, e))?;
+    // Checked as `Checkpoint::load` checks a model (hash, f32, finite, shapes), from the one read.
+    let meta = Checkpoint::from_parts(meta, &bytes, &path)?.meta;
     let record = InitialWeights { model: dir.display().to_string(), weights_hash: fnv1a_hex(&bytes) };
-    Ok((checkpoint.meta, record, read_tensors(&bytes, &path)?))
-}
-
-/// The checked `config.json` of the model folder `dir`.
-fn read_config(dir: &Path) -> Result<CheckpointMeta, GenError> {
-    let path = dir.join(CONFIG_FILE);
-    let text = std::fs::read_to_string(&path).map_err(|e| GenError::io(&path, e))?;
-    parse_meta(&text, &path)
+    Ok((meta, record, read_tensors(&bytes, &path)?))
 }
 
 /// A random batch (with a random symmetry per scene when `augment`).
@@ -540,7 +535,7 @@ fn restore(
         return Err(GenError::checkpoint(&meta_path, "was trained on a different dataset (stats.json differs)"));
     }
     let config_path = opts.out.join(CONFIG_FILE);
-    let meta = read_config(&opts.out)?;
+    let meta = read_meta(&opts.out)?;
     if meta.model != opts.model {
         return Err(GenError::checkpoint(&config_path, "model config differs from the one asked for"));
     }
