@@ -8,8 +8,13 @@
 //! room, two walkers crossing a living room, a child on a 30 cm seat, a nap on the sofa, a living
 //! room scanned at 25° to the axes, people sitting and lying on the floor; people who walk in, sit
 //! down, get up and walk out again (on a sofa, and in a reading chair turned into a corner), their
-//! actions labelled from the motion as `import-motion` labels a capture; and two inputs no layout
-//! can make pass (a sitter's feet in the wall; a walk through where the person's chair must stand).
+//! actions labelled from the motion as `import-motion` labels a capture; four people in
+//! conversation round a room's middle, two diners in a narrow dining room, two single beds with a
+//! walker between them, a nap on a sofa facing a TV; an open-plan room 7 m long with a sofa facing
+//! the TV from the middle of the room and four diners, four diners one to a side of a square table,
+//! a bed standing off its wall with a walker behind its head, a living room 2.6 m wide and 6.5 m
+//! long; and two inputs no layout can make pass (a sitter's feet in the wall; a walk through where
+//! the person's chair must stand).
 //!
 //! ```sh
 //! cargo run --release --example hand_built_inputs -- tests/inputs
@@ -447,6 +452,65 @@ fn main() -> anyhow::Result<()> {
                     sitter("chair", [4.3, 1.0], 0.44, 30.0),
                     toucher("tv", [2.6, 3.75, 0.62], 0.0),
                     walker("cross", &[[0.4, 2.3], [5.0, 2.5]]),
+                ],
+            ),
+        ),
+        // An open-plan room 7 m long: two people on a sofa facing a TV on the west wall, four diners
+        // two a side at the east end, and a walker from the door in the south wall to the north.
+        (
+            "open_plan_sofa_and_table",
+            scene(
+                RoomType::Living,
+                rect(7.0, 5.0),
+                vec![
+                    sitter("sofa_left", [2.6, 2.2], 0.43, 90.0),
+                    sitter("sofa_right", [2.6, 2.85], 0.43, 90.0),
+                    toucher("tv", [0.35, 2.5, 0.6], 90.0),
+                    sitter("diner_nw", [5.1, 3.45], 0.46, 180.0),
+                    sitter("diner_ne", [5.8, 3.45], 0.46, 180.0),
+                    sitter("diner_sw", [5.1, 2.15], 0.46, 0.0),
+                    sitter("diner_se", [5.8, 2.15], 0.46, 0.0),
+                    walker("through", &[[3.8, 0.3], [3.9, 4.7]]),
+                ],
+            ),
+        ),
+        // Four diners, one at each side of a square table, and a hand on a sideboard by the wall.
+        (
+            "dining_square_four",
+            scene(
+                RoomType::Dining,
+                rect(4.4, 4.0),
+                vec![
+                    sitter("north", [2.2, 2.85], 0.46, 180.0),
+                    sitter("south", [2.2, 1.15], 0.46, 0.0),
+                    sitter("east", [3.05, 2.0], 0.46, 90.0),
+                    sitter("west", [1.35, 2.0], 0.46, -90.0),
+                    toucher("sideboard", [4.05, 3.4, 0.8], -90.0),
+                ],
+            ),
+        ),
+        // A sleeper in the middle of the room, their head 1.2 m from the wall behind it, and someone
+        // walking along that wall, between the bed's head and the wall, and up the room's east side.
+        (
+            "bed_off_the_wall",
+            scene(
+                RoomType::Bedroom,
+                rect(4.6, 4.6),
+                vec![lier("sleeper", [2.3, 2.0], 0.5, 0.0), walker("behind", &[[0.4, 0.35], [4.2, 0.35], [4.2, 4.2]])],
+            ),
+        ),
+        // A living room 2.6 m wide and 6.5 m long: two people side by side at one end facing down
+        // its length, a reader at the other end, and a walker along one long wall.
+        (
+            "long_narrow_living",
+            scene(
+                RoomType::Living,
+                rect(2.6, 6.5),
+                vec![
+                    sitter("left", [1.0, 5.9], 0.43, 180.0),
+                    sitter("right", [1.65, 5.9], 0.43, 180.0),
+                    sitter("reader", [1.6, 0.6], 0.44, 0.0),
+                    walker("along", &[[0.35, 0.4], [0.35, 6.1]]),
                 ],
             ),
         ),
