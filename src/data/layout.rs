@@ -9,7 +9,9 @@
 //!
 //! The gaps the rules leave (a piece's back from its wall, a nightstand from its bed, a chair from
 //! its table, …) are exact by default; with a [`Spacing`] spread each one is drawn afresh for every
-//! piece, as a room furnished by hand keeps them only roughly.
+//! piece, as a room furnished by hand keeps them only roughly. A [`Spacing`] may also stand a share
+//! of the sofas out in the room, their backs [`FREE_SOFA_BACK`] off the wall behind them with a
+//! walkway there, as open-plan rooms have them; by default every sofa stands at a wall.
 
 use super::Rng;
 use crate::furniture::{SIZE_JITTER, catalog_items};
@@ -53,11 +55,20 @@ pub struct Placed {
 pub struct Spacing {
     /// Half the width of the range each gap is drawn from (m; 0 = the rules' gaps exactly).
     pub spread: f64,
+    /// The share of sofa groups whose sofa stands out in the room, its back [`FREE_SOFA_BACK`]
+    /// off the wall behind it (0 = every sofa at a wall, the rooms of the exact rules draw for
+    /// draw; a room too small for it gets its sofa at a wall).
+    pub free_sofas: f64,
 }
 
+/// How far (m) the back of a sofa that stands out in the room is from the wall behind it: a
+/// walkway's width at least ([`WALKWAY_HALF`] twice, and a little), at most what open-plan rooms
+/// leave behind a sofa that faces away from a dining table or a door.
+pub const FREE_SOFA_BACK: (f64, f64) = (0.8, 1.4);
+
 impl Spacing {
-    /// The rules' gaps exactly.
-    pub const EXACT: Spacing = Spacing { spread: 0.0 };
+    /// The rules' gaps exactly, every sofa at a wall.
+    pub const EXACT: Spacing = Spacing { spread: 0.0, free_sofas: 0.0 };
 
     /// The gap for a rule whose own is `rule` (m): `rule` itself when exact, else a draw.
     pub fn gap(&self, rule: f64, rng: &mut Rng) -> f64 {
@@ -150,6 +161,14 @@ impl Layout {
 
     /// A pose against a wall: (centre, yaw) for a footprint `w` × `d`, or `None` if no wall fits.
     fn wall_spot(&self, w: f64, d: f64, rng: &mut Rng) -> Option<(DVec2, f64)> {
+        let (wall, t) = self.place_along_a_wall(w, rng)?;
+        let gap = self.spacing.gap(WALL_GAP, rng);
+        Some((wall.point(t, d * 0.5 + gap), yaw_facing(wall.inward)))
+    }
+
+    /// A wall long enough for a footprint `w` wide (drawn by length) and where along it the
+    /// footprint's middle stands.
+    fn place_along_a_wall(&self, w: f64, rng: &mut Rng) -> Option<(Wall, f64)> {
         let walls: Vec<Wall> = self.polygon.walls().collect();
         let weights: Vec<f64> =
             walls.iter().map(|wall| if wall.length > w + 0.1 { wall.length } else { 0.0 }).collect();
@@ -157,9 +176,7 @@ impl Layout {
             return None;
         }
         let wall = walls[rng.weighted(&weights)];
-        let t = rng.uniform(w * 0.5 + 0.02, wall.length - w * 0.5 - 0.02);
-        let gap = self.spacing.gap(WALL_GAP, rng);
-        Some((wall.point(t, d * 0.5 + gap), yaw_facing(wall.inward)))
+        Some((wall, rng.uniform(w * 0.5 + 0.02, wall.length - w * 0.5 - 0.02)))
     }
 
     /// Places a piece of `size` against a wall; `None` after `tries` failures.
@@ -167,6 +184,21 @@ impl Layout {
         for _ in 0..tries {
             let (c, yaw) = self.wall_spot(size.x, size.y, rng)?;
             let b = OBox::new(c.extend(size.z * 0.5), size, yaw);
+            if self.fits(&b, 0.02) {
+                let access = vec![local_to_world(&b, DVec2::new(0.0, size.y * 0.5 + ACCESS))];
+                return Some(self.push(category, b, access, None));
+            }
+        }
+        None
+    }
+
+    /// Places a piece of `size` facing into the room from a wall, its back [`FREE_SOFA_BACK`] off
+    /// it (drawn); `None` after `tries` failures.
+    fn place_off_wall(&mut self, category: Category, size: DVec3, rng: &mut Rng, tries: usize) -> Option<usize> {
+        for _ in 0..tries {
+            let (wall, t) = self.place_along_a_wall(size.x, rng)?;
+            let back = rng.uniform(FREE_SOFA_BACK.0, FREE_SOFA_BACK.1);
+            let b = OBox::new(wall.point(t, size.y * 0.5 + back).extend(size.z * 0.5), size, yaw_facing(wall.inward));
             if self.fits(&b, 0.02) {
                 let access = vec![local_to_world(&b, DVec2::new(0.0, size.y * 0.5 + ACCESS))];
                 return Some(self.push(category, b, access, None));
@@ -334,7 +366,13 @@ impl Layout {
     /// armchairs beside the coffee table, end tables beside the sofa.
     pub fn place_sofa_group(&mut self, sofa: Category, extras: &mut Vec<Category>, rng: &mut Rng) -> Option<usize> {
         let size = real_size(sofa, rng);
-        let s = self.place_on_wall(sofa, size, rng, 30)?;
+        // The share is drawn only when asked for: with none, the rooms are those drawn before it.
+        let free = self.spacing.free_sofas > 0.0 && rng.uniform(0.0, 1.0) < self.spacing.free_sofas;
+        let off_wall = if free { self.place_off_wall(sofa, size, rng, 30) } else { None };
+        let s = match off_wall {
+            Some(s) => s,
+            None => self.place_on_wall(sofa, size, rng, 30)?,
+        };
         let b = self.placed[s].obox;
         let (w, d) = (size.x, size.y);
         self.placed[s].access = [-1.0, 1.0]

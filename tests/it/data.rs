@@ -96,7 +96,7 @@ fn rule_gaps(s: &Scene) -> (Vec<f64>, Vec<f64>) {
 /// and the rooms keep every other rule.
 #[test]
 fn a_gap_spread_draws_the_rules_gaps_and_keeps_the_rooms_valid() {
-    let spread = Spacing { spread: 0.05 };
+    let spread = Spacing { spread: 0.05, ..Spacing::EXACT };
     let (mut exact, mut spaced) = ((Vec::new(), Vec::new()), (Vec::new(), Vec::new()));
     for i in 0..150 {
         let (w, c) = rule_gaps(&generate_room(RoomType::Dining, 3, i, false).scene);
@@ -138,6 +138,52 @@ fn a_gap_spread_draws_the_rules_gaps_and_keeps_the_rooms_valid() {
     let (cm, cs) = spread_of(&spaced.1);
     assert!((wm - 0.06).abs() < 0.006 && (ws - 0.023).abs() < 0.004, "walls: mean {wm}, σ {ws}");
     assert!((cm - 0.055).abs() < 0.005 && (cs - 0.020).abs() < 0.003, "chairs: mean {cm}, σ {cs}");
+}
+
+/// By default every sofa stands at a wall and asking for no free sofas draws the same rooms; with
+/// a share, that share of the sofas stands out in the room, its back 0.8–1.4 m off the wall
+/// behind it, the rest at their wall, and the rooms keep every other rule.
+#[test]
+fn free_sofas_stand_out_in_the_room_with_a_walkway_behind() {
+    use shade_sim::data::layout::FREE_SOFA_BACK;
+    use shade_sim::scene::Group;
+    // The back of each sofa: its distance from the wall behind it (m).
+    let backs = |s: &Scene| -> Vec<f64> {
+        let floor = s.floor_plan.polygon();
+        s.objects
+            .iter()
+            .filter(|o| o.category.group() == Group::Sofa)
+            .map(|o| {
+                let f = o.obox().footprint();
+                -floor.signed_distance((f[0] + f[1]) * 0.5)
+            })
+            .collect()
+    };
+    let half = Spacing { free_sofas: 0.5, ..Spacing::EXACT };
+    let (mut at_wall, mut free) = (0, 0);
+    for i in 0..200 {
+        let exact = generate_room(RoomType::Living, 4, i, false).scene;
+        let none = generate_spaced_room(RoomType::Living, 4, i, false, Spacing::EXACT).scene;
+        assert_eq!(exact, none, "{i}: no free sofas, the same room");
+        assert!(backs(&exact).iter().all(|b| (b - WALL_GAP).abs() < 2e-3), "{i}: {:?}", backs(&exact));
+        let s = generate_spaced_room(RoomType::Living, 4, i, false, half).scene;
+        assert!(validate(&s).is_empty(), "{i}: {:?}", validate(&s));
+        for b in backs(&s) {
+            if (b - WALL_GAP).abs() < 2e-3 {
+                at_wall += 1;
+            } else {
+                assert!(
+                    (FREE_SOFA_BACK.0 - 2e-3..=FREE_SOFA_BACK.1 + 2e-3).contains(&b),
+                    "{i}: a sofa's back {b} m off"
+                );
+                free += 1;
+            }
+        }
+    }
+    // Half of the sofa groups asked to stand out, less those whose room has no place for it (30
+    // of the 101 sofas of these rooms stand out).
+    let share = free as f64 / (free + at_wall) as f64;
+    assert!(free + at_wall > 100 && (0.2..=0.5).contains(&share), "{free} free, {at_wall} at a wall");
 }
 
 /// The raw dataset is as poor as 3D-FRONT HUMAN's, and calibration meets SHADE's Table 2 targets.
