@@ -31,6 +31,9 @@ const GRID: f64 = 0.1;
 /// Distance in front of a piece where a person reaches it.
 const ACCESS: f64 = 0.45;
 
+/// How far a piece's back stands off its wall: drawn from the layout's spacing and the stream.
+type Back = fn(&Spacing, &mut Rng) -> f64;
+
 /// A piece placed in the room.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Placed {
@@ -161,14 +164,12 @@ impl Layout {
 
     /// A pose against a wall: (centre, yaw) for a footprint `w` × `d`, or `None` if no wall fits.
     fn wall_spot(&self, w: f64, d: f64, rng: &mut Rng) -> Option<(DVec2, f64)> {
-        let (wall, t) = self.place_along_a_wall(w, rng)?;
-        let gap = self.spacing.gap(WALL_GAP, rng);
-        Some((wall.point(t, d * 0.5 + gap), yaw_facing(wall.inward)))
+        self.spot_facing_in(w, d, rng, |spacing, rng| spacing.gap(WALL_GAP, rng))
     }
 
-    /// A wall long enough for a footprint `w` wide (drawn by length) and where along it the
-    /// footprint's middle stands.
-    fn place_along_a_wall(&self, w: f64, rng: &mut Rng) -> Option<(Wall, f64)> {
+    /// A pose facing into the room from a wall (drawn by length) for a footprint `w` × `d`, its
+    /// back `back` off the wall (drawn after the place along it), or `None` if no wall fits.
+    fn spot_facing_in(&self, w: f64, d: f64, rng: &mut Rng, back: Back) -> Option<(DVec2, f64)> {
         let walls: Vec<Wall> = self.polygon.walls().collect();
         let weights: Vec<f64> =
             walls.iter().map(|wall| if wall.length > w + 0.1 { wall.length } else { 0.0 }).collect();
@@ -176,29 +177,33 @@ impl Layout {
             return None;
         }
         let wall = walls[rng.weighted(&weights)];
-        Some((wall, rng.uniform(w * 0.5 + 0.02, wall.length - w * 0.5 - 0.02)))
+        let t = rng.uniform(w * 0.5 + 0.02, wall.length - w * 0.5 - 0.02);
+        let gap = back(&self.spacing, rng);
+        Some((wall.point(t, d * 0.5 + gap), yaw_facing(wall.inward)))
     }
 
     /// Places a piece of `size` against a wall; `None` after `tries` failures.
     pub fn place_on_wall(&mut self, category: Category, size: DVec3, rng: &mut Rng, tries: usize) -> Option<usize> {
-        for _ in 0..tries {
-            let (c, yaw) = self.wall_spot(size.x, size.y, rng)?;
-            let b = OBox::new(c.extend(size.z * 0.5), size, yaw);
-            if self.fits(&b, 0.02) {
-                let access = vec![local_to_world(&b, DVec2::new(0.0, size.y * 0.5 + ACCESS))];
-                return Some(self.push(category, b, access, None));
-            }
-        }
-        None
+        self.place_facing_in(category, size, rng, tries, |spacing, rng| spacing.gap(WALL_GAP, rng))
     }
 
     /// Places a piece of `size` facing into the room from a wall, its back [`FREE_SOFA_BACK`] off
     /// it (drawn); `None` after `tries` failures.
     fn place_off_wall(&mut self, category: Category, size: DVec3, rng: &mut Rng, tries: usize) -> Option<usize> {
+        self.place_facing_in(category, size, rng, tries, |_, rng| rng.uniform(FREE_SOFA_BACK.0, FREE_SOFA_BACK.1))
+    }
+
+    fn place_facing_in(
+        &mut self,
+        category: Category,
+        size: DVec3,
+        rng: &mut Rng,
+        tries: usize,
+        back: Back,
+    ) -> Option<usize> {
         for _ in 0..tries {
-            let (wall, t) = self.place_along_a_wall(size.x, rng)?;
-            let back = rng.uniform(FREE_SOFA_BACK.0, FREE_SOFA_BACK.1);
-            let b = OBox::new(wall.point(t, size.y * 0.5 + back).extend(size.z * 0.5), size, yaw_facing(wall.inward));
+            let (c, yaw) = self.spot_facing_in(size.x, size.y, rng, back)?;
+            let b = OBox::new(c.extend(size.z * 0.5), size, yaw);
             if self.fits(&b, 0.02) {
                 let access = vec![local_to_world(&b, DVec2::new(0.0, size.y * 0.5 + ACCESS))];
                 return Some(self.push(category, b, access, None));
