@@ -129,6 +129,10 @@ fn negative_and_invalid_numbers_are_one_line_errors_in_every_command() {
             "error: --gap-spread: must be between 0 and 0.2 (m), not -0.05",
         ),
         (
+            vec!["synth", "--room", "living", "--scenes", "1", "--out", out, "--free-sofas", "1.5"],
+            "error: --free-sofas: must be a share between 0 and 1, not 1.5",
+        ),
+        (
             vec!["import-motion", input, "--room", "kitchen", "--floor", "5x4", "--out", out],
             "error: invalid value 'kitchen' for '--room <ROOM>' [possible values: bedroom, living, dining]",
         ),
