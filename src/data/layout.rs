@@ -193,6 +193,8 @@ impl Layout {
         self.place_facing_in(category, size, rng, tries, |_, rng| rng.uniform(FREE_SOFA_BACK.0, FREE_SOFA_BACK.1))
     }
 
+    /// Places a piece of `size` facing into the room from a wall, its back `back` off it; `None`
+    /// after `tries` failures.
     fn place_facing_in(
         &mut self,
         category: Category,

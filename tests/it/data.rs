@@ -140,9 +140,9 @@ fn a_gap_spread_draws_the_rules_gaps_and_keeps_the_rooms_valid() {
     assert!((cm - 0.055).abs() < 0.005 && (cs - 0.020).abs() < 0.003, "chairs: mean {cm}, σ {cs}");
 }
 
-/// By default every sofa stands at a wall and asking for no free sofas draws the same rooms; with
-/// a share, that share of the sofas stands out in the room, its back 0.8–1.4 m off the wall
-/// behind it, the rest at their wall, and the rooms keep every other rule.
+/// By default every sofa stands at a wall; with a share, that share of the sofas stands out in
+/// the room, its back 0.8–1.4 m off the wall behind it, the rest at their wall, and the rooms keep
+/// every other rule.
 #[test]
 fn free_sofas_stand_out_in_the_room_with_a_walkway_behind() {
     use shade_sim::data::layout::FREE_SOFA_BACK;
@@ -163,8 +163,6 @@ fn free_sofas_stand_out_in_the_room_with_a_walkway_behind() {
     let (mut at_wall, mut free) = (0, 0);
     for i in 0..200 {
         let exact = generate_room(RoomType::Living, 4, i, false).scene;
-        let none = generate_spaced_room(RoomType::Living, 4, i, false, Spacing::EXACT).scene;
-        assert_eq!(exact, none, "{i}: no free sofas, the same room");
         assert!(backs(&exact).iter().all(|b| (b - WALL_GAP).abs() < 2e-3), "{i}: {:?}", backs(&exact));
         let s = generate_spaced_room(RoomType::Living, 4, i, false, half).scene;
         assert!(validate(&s).is_empty(), "{i}: {:?}", validate(&s));
