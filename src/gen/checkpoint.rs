@@ -139,30 +139,51 @@ impl Checkpoint {
     /// A model from its `config.json` and weight bytes; `origin` names them in errors. The bytes
     /// must match the config's hash (when it has one), and every tensor must be f32 and finite.
     pub fn from_parts(meta: CheckpointMeta, weights: &[u8], origin: &Path) -> Result<Checkpoint, GenError> {
-        if let Some(expected) = &meta.weights_hash
-            && fnv1a_hex(weights) != *expected
-        {
-            return Err(GenError::checkpoint(
-                origin,
-                format!("does not match the weights_hash {expected} in config.json (corrupt or replaced)"),
-            ));
-        }
-        let tensors = read_tensors(weights, origin)?;
-        let mut names: Vec<&String> = tensors.keys().collect();
-        names.sort();
-        for name in names {
-            let t = &tensors[name];
-            if t.dtype() != candle_core::DType::F32 {
-                return Err(GenError::checkpoint(origin, format!("tensor {name} is {:?}, not f32", t.dtype())));
-            }
-            let values = t.flatten_all().and_then(|v| v.to_vec1::<f32>()).map_err(|e| at(e.into(), origin))?;
-            if let Some(k) = values.iter().position(|v| !v.is_finite()) {
-                return Err(GenError::checkpoint(origin, format!("tensor {name} has a non-finite value at {k}")));
-            }
-        }
+        let tensors = checked_tensors(&meta, weights, origin)?;
+        Self::from_tensors(meta, tensors, origin)
+    }
+
+    /// The model of `meta` with the weights `tensors` (from [`checked_tensors`]), their shapes
+    /// checked against its network; errors name `origin`.
+    pub(crate) fn from_tensors(
+        meta: CheckpointMeta,
+        tensors: HashMap<String, Tensor>,
+        origin: &Path,
+    ) -> Result<Checkpoint, GenError> {
         let denoiser = Denoiser::new(&meta.model, &mut Params::loaded(tensors)).map_err(|e| at(e, origin))?;
         Ok(Checkpoint { meta, denoiser })
     }
+}
+
+/// The tensors of a weights file's bytes, checked against `meta`'s `weights_hash` and found f32 and
+/// finite (not yet against the network's shapes: [`Checkpoint::from_tensors`]).
+pub(crate) fn checked_tensors(
+    meta: &CheckpointMeta,
+    weights: &[u8],
+    origin: &Path,
+) -> Result<HashMap<String, Tensor>, GenError> {
+    if let Some(expected) = &meta.weights_hash
+        && fnv1a_hex(weights) != *expected
+    {
+        return Err(GenError::checkpoint(
+            origin,
+            format!("does not match the weights_hash {expected} in config.json (corrupt or replaced)"),
+        ));
+    }
+    let tensors = read_tensors(weights, origin)?;
+    let mut names: Vec<&String> = tensors.keys().collect();
+    names.sort();
+    for name in names {
+        let t = &tensors[name];
+        if t.dtype() != candle_core::DType::F32 {
+            return Err(GenError::checkpoint(origin, format!("tensor {name} is {:?}, not f32", t.dtype())));
+        }
+        let values = t.flatten_all().and_then(|v| v.to_vec1::<f32>()).map_err(|e| at(e.into(), origin))?;
+        if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+            return Err(GenError::checkpoint(origin, format!("tensor {name} has a non-finite value at {k}")));
+        }
+    }
+    Ok(tensors)
 }
 
 /// The checked `config.json` of the model folder `dir`, without its weights.

@@ -12,7 +12,8 @@
 use super::adamw::{AdamW, AdamWConfig};
 use super::checkpoint::{
     CONFIG_FILE, Checkpoint, CheckpointMeta, InitialWeights, MODEL_FORMAT, STATE_FILE, STATE_META_FILE,
-    SamplingDefaults, TrainingInfo, WEIGHTS_FILE, fnv1a_hex, read_meta, read_tensors, write_json, write_tensors,
+    SamplingDefaults, TrainingInfo, WEIGHTS_FILE, checked_tensors, fnv1a_hex, read_meta, read_tensors, write_json,
+    write_tensors,
 };
 use super::dataset::{Example, HostBatch, NoisyBatch, balance_categories, load_split};
 use super::engine::{Engine, Gradients};
@@ -299,10 +300,13 @@ pub fn train(
     // Where the weights start: a resumed run's checkpoint says (its start's bounds, record and
     // sampler are kept); else the model `init` names (its bounds and sampler), or random weights.
     let resumed = opts.resume.then(|| read_meta(&opts.out)).transpose()?;
-    let (start_bounds, started_from, start_sampling, start_tensors) = match (resumed, &opts.init) {
-        (Some(meta), _) => {
-            (meta.training.init.is_some().then_some(meta.bounds), meta.training.init, meta.sampling, None)
-        }
+    let (start_bounds, started_from, start_sampling, start_tensors) = match (&resumed, &opts.init) {
+        (Some(meta), _) => (
+            meta.training.init.is_some().then(|| meta.bounds.clone()),
+            meta.training.init.clone(),
+            meta.sampling.clone(),
+            None,
+        ),
         (None, Some(dir)) => {
             let (meta, record, tensors) = initial_weights(dir, cfg)?;
             (Some(meta.bounds), Some(record), meta.sampling, Some(tensors))
@@ -339,8 +343,8 @@ pub fn train(
     let mut val_loss = None;
     let log_path = opts.out.join("log.jsonl");
     let mut log: Vec<LogLine> = Vec::new();
-    if opts.resume {
-        let state = restore(opts, &data_hash, &layout, &mut params, &mut adam, &mut ema)?;
+    if let Some(meta) = &resumed {
+        let state = restore(opts, meta, &data_hash, &layout, &mut params, &mut adam, &mut ema)?;
         step = state.step;
         seconds = state.seconds;
         val_loss = state.val_loss;
@@ -449,9 +453,10 @@ fn initial_weights(
     let path = dir.join(WEIGHTS_FILE);
     let bytes = std::fs::read(&path).map_err(|e| GenError::io(&path, e))?;
     // Checked as `Checkpoint::load` checks a model (hash, f32, finite, shapes), from the one read.
-    let meta = Checkpoint::from_parts(meta, &bytes, &path)?.meta;
+    let tensors = checked_tensors(&meta, &bytes, &path)?;
+    let meta = Checkpoint::from_tensors(meta, tensors.clone(), &path)?.meta;
     let record = InitialWeights { model: dir.display().to_string(), weights_hash: fnv1a_hex(&bytes) };
-    Ok((meta, record, read_tensors(&bytes, &path)?))
+    Ok((meta, record, tensors))
 }
 
 /// A random batch (with a random symmetry per scene when `augment`).
@@ -521,6 +526,7 @@ fn save(
 
 fn restore(
     opts: &TrainOptions,
+    meta: &CheckpointMeta,
     data_hash: &str,
     layout: &ParamLayout,
     params: &mut Vec<f32>,
@@ -535,7 +541,6 @@ fn restore(
         return Err(GenError::checkpoint(&meta_path, "was trained on a different dataset (stats.json differs)"));
     }
     let config_path = opts.out.join(CONFIG_FILE);
-    let meta = read_meta(&opts.out)?;
     if meta.model != opts.model {
         return Err(GenError::checkpoint(&config_path, "model config differs from the one asked for"));
     }
