@@ -13,7 +13,8 @@
 //! walker between them, a nap on a sofa facing a TV; an open-plan room 7 m long with a sofa facing
 //! the TV from the middle of the room and four diners, four diners one to a side of a square table,
 //! a bed standing off its wall with a walker behind its head, a living room 2.6 m wide and 6.5 m
-//! long; and two inputs no layout can make pass (a sitter's feet in the wall; a walk through where
+//! long; the open-plan room's sofa pair alone in the middle of the room, a metre off a wall, and
+//! with a walker behind them; and two inputs no layout can make pass (a sitter's feet in the wall; a walk through where
 //! the person's chair must stand).
 //!
 //! ```sh
@@ -511,6 +512,47 @@ fn main() -> anyhow::Result<()> {
                     sitter("right", [1.65, 5.9], 0.43, 180.0),
                     sitter("reader", [1.6, 0.6], 0.44, 0.0),
                     walker("along", &[[0.35, 0.4], [0.35, 6.1]]),
+                ],
+            ),
+        ),
+        // The open-plan room's sofa pair and TV alone: two people side by side in the middle of a
+        // 7 × 5 m room, their backs 4 m from the east wall, facing the TV on the west wall.
+        (
+            "sofa_pair_in_the_open",
+            scene(
+                RoomType::Living,
+                rect(7.0, 5.0),
+                vec![
+                    sitter("sofa_left", [2.6, 2.2], 0.43, 90.0),
+                    sitter("sofa_right", [2.6, 2.85], 0.43, 90.0),
+                    toucher("tv", [0.35, 2.5, 0.6], 90.0),
+                ],
+            ),
+        ),
+        // The same pair in a room 4 m wide: their backs about a metre from the east wall.
+        (
+            "sofa_pair_a_metre_off_the_wall",
+            scene(
+                RoomType::Living,
+                rect(4.0, 5.0),
+                vec![
+                    sitter("sofa_left", [2.6, 2.2], 0.43, 90.0),
+                    sitter("sofa_right", [2.6, 2.85], 0.43, 90.0),
+                    toucher("tv", [0.35, 2.5, 0.6], 90.0),
+                ],
+            ),
+        ),
+        // The same pair in a room 4.6 m wide, with a walker crossing the room 1.2 m behind them.
+        (
+            "sofa_pair_walker_behind",
+            scene(
+                RoomType::Living,
+                rect(4.6, 5.0),
+                vec![
+                    sitter("sofa_left", [2.6, 2.2], 0.43, 90.0),
+                    sitter("sofa_right", [2.6, 2.85], 0.43, 90.0),
+                    toucher("tv", [0.35, 2.5, 0.6], 90.0),
+                    walker("through", &[[3.8, 0.3], [3.9, 4.7]]),
                 ],
             ),
         ),
