@@ -123,6 +123,16 @@ impl Turned {
     }
 }
 
+/// Two people side by side on a sofa 2.6 m from the west wall, facing a TV touched on that wall
+/// (the open-plan room's pair, and its cuts).
+fn pair_facing_tv() -> Vec<Human> {
+    vec![
+        sitter("sofa_left", [2.6, 2.2], 0.43, 90.0),
+        sitter("sofa_right", [2.6, 2.85], 0.43, 90.0),
+        toucher("tv", [0.35, 2.5, 0.6], 90.0),
+    ]
+}
+
 fn scene(room_type: RoomType, floor_plan: FloorPlan, humans: Vec<Human>) -> Scene {
     Scene { format: shade_sim::scene::FORMAT.into(), room_type, floor_plan, objects: Vec::new(), humans }
 }
@@ -463,16 +473,17 @@ fn main() -> anyhow::Result<()> {
             scene(
                 RoomType::Living,
                 rect(7.0, 5.0),
-                vec![
-                    sitter("sofa_left", [2.6, 2.2], 0.43, 90.0),
-                    sitter("sofa_right", [2.6, 2.85], 0.43, 90.0),
-                    toucher("tv", [0.35, 2.5, 0.6], 90.0),
-                    sitter("diner_nw", [5.1, 3.45], 0.46, 180.0),
-                    sitter("diner_ne", [5.8, 3.45], 0.46, 180.0),
-                    sitter("diner_sw", [5.1, 2.15], 0.46, 0.0),
-                    sitter("diner_se", [5.8, 2.15], 0.46, 0.0),
-                    walker("through", &[[3.8, 0.3], [3.9, 4.7]]),
-                ],
+                [
+                    pair_facing_tv(),
+                    vec![
+                        sitter("diner_nw", [5.1, 3.45], 0.46, 180.0),
+                        sitter("diner_ne", [5.8, 3.45], 0.46, 180.0),
+                        sitter("diner_sw", [5.1, 2.15], 0.46, 0.0),
+                        sitter("diner_se", [5.8, 2.15], 0.46, 0.0),
+                        walker("through", &[[3.8, 0.3], [3.9, 4.7]]),
+                    ],
+                ]
+                .concat(),
             ),
         ),
         // Four diners, one at each side of a square table, and a hand on a sideboard by the wall.
@@ -517,43 +528,16 @@ fn main() -> anyhow::Result<()> {
         ),
         // The open-plan room's sofa pair and TV alone: two people side by side in the middle of a
         // 7 × 5 m room, their backs 4 m from the east wall, facing the TV on the west wall.
-        (
-            "sofa_pair_in_the_open",
-            scene(
-                RoomType::Living,
-                rect(7.0, 5.0),
-                vec![
-                    sitter("sofa_left", [2.6, 2.2], 0.43, 90.0),
-                    sitter("sofa_right", [2.6, 2.85], 0.43, 90.0),
-                    toucher("tv", [0.35, 2.5, 0.6], 90.0),
-                ],
-            ),
-        ),
+        ("sofa_pair_in_the_open", scene(RoomType::Living, rect(7.0, 5.0), pair_facing_tv())),
         // The same pair in a room 4 m wide: their backs about a metre from the east wall.
-        (
-            "sofa_pair_a_metre_off_the_wall",
-            scene(
-                RoomType::Living,
-                rect(4.0, 5.0),
-                vec![
-                    sitter("sofa_left", [2.6, 2.2], 0.43, 90.0),
-                    sitter("sofa_right", [2.6, 2.85], 0.43, 90.0),
-                    toucher("tv", [0.35, 2.5, 0.6], 90.0),
-                ],
-            ),
-        ),
+        ("sofa_pair_a_metre_off_the_wall", scene(RoomType::Living, rect(4.0, 5.0), pair_facing_tv())),
         // The same pair in a room 4.6 m wide, with a walker crossing the room 1.2 m behind them.
         (
             "sofa_pair_walker_behind",
             scene(
                 RoomType::Living,
                 rect(4.6, 5.0),
-                vec![
-                    sitter("sofa_left", [2.6, 2.2], 0.43, 90.0),
-                    sitter("sofa_right", [2.6, 2.85], 0.43, 90.0),
-                    toucher("tv", [0.35, 2.5, 0.6], 90.0),
-                    walker("through", &[[3.8, 0.3], [3.9, 4.7]]),
-                ],
+                [pair_facing_tv(), vec![walker("through", &[[3.8, 0.3], [3.9, 4.7]])]].concat(),
             ),
         ),
     ];
