@@ -37,6 +37,10 @@ pub struct SynthArgs {
     /// sofa at a wall.
     #[arg(long, default_value_t = 0.0)]
     pub free_sofas: f64,
+    /// Let a person touching a table (any piece that stands free of the walls) stand at any of its
+    /// four sides, not only at its front: a hand on a dining table's end as well as its long side.
+    #[arg(long)]
+    pub touch_any_side: bool,
 }
 
 pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> {
@@ -55,11 +59,14 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     if args.free_sofas > 0.0 {
         spread.push_str(&format!(" --free-sofas {}", args.free_sofas));
     }
+    if args.touch_any_side {
+        spread.push_str(" --touch-any-side");
+    }
     let cfg = SynthConfig {
         room: args.room.into(),
         scenes: args.scenes,
         seed: args.seed,
-        spacing: Spacing { spread: args.gap_spread, free_sofas: args.free_sofas },
+        spacing: Spacing { spread: args.gap_spread, free_sofas: args.free_sofas, touch_any_side: args.touch_any_side },
         command: format!(
             "shade-sim synth --room {} --scenes {} --seed {} --out {}{}{spread}",
             args.room.name(),

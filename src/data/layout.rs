@@ -47,7 +47,7 @@ pub struct Placed {
     pub anchor: Option<usize>,
 }
 
-/// How exactly the rules' gaps are kept.
+/// How exactly the rules' gaps are kept, and what else the draw loosens from the exact rules.
 ///
 /// With `spread` 0 (the default) every gap is the rule's own ([`WALL_GAP`] from a wall, 4 cm
 /// between a nightstand and its bed or a chair and its table, …) and nothing is drawn for it, so
@@ -62,6 +62,11 @@ pub struct Spacing {
     /// off the wall behind it (0 = every sofa at a wall, the rooms of the exact rules draw for
     /// draw; a room too small for it gets its sofa at a wall).
     pub free_sofas: f64,
+    /// Whether a person touching a piece that stands free of the walls (a table, not a cabinet)
+    /// may stand at any of its four sides, drawn for each toucher (false = at its front only, the
+    /// rooms of the exact rules draw for draw). A side with no room for them drops the toucher,
+    /// as a blocked front does.
+    pub touch_any_side: bool,
 }
 
 /// How far (m) the back of a sofa that stands out in the room is from the wall behind it: a
@@ -71,7 +76,7 @@ pub const FREE_SOFA_BACK: (f64, f64) = (0.8, 1.4);
 
 impl Spacing {
     /// The rules' gaps exactly, every sofa at a wall.
-    pub const EXACT: Spacing = Spacing { spread: 0.0, free_sofas: 0.0 };
+    pub const EXACT: Spacing = Spacing { spread: 0.0, free_sofas: 0.0, touch_any_side: false };
 
     /// The gap for a rule whose own is `rule` (m): `rule` itself when exact, else a draw.
     pub fn gap(&self, rule: f64, rng: &mut Rng) -> f64 {
@@ -115,6 +120,11 @@ impl Layout {
     /// An empty room whose gaps are kept as `spacing` says.
     pub fn with_spacing(plan: &FloorPlan, spacing: Spacing) -> Layout {
         Layout { polygon: plan.polygon(), height: plan.height, spacing, placed: Vec::new(), reserved: Vec::new() }
+    }
+
+    /// How the rules' gaps are kept, and what else the draw loosens.
+    pub fn spacing(&self) -> Spacing {
+        self.spacing
     }
 
     /// The floor polygon.

@@ -151,6 +151,16 @@ pub fn contact_humans(layout: &Layout, objects: &[Object], rng: &mut Rng) -> Vec
             piece.category.affordances().iter().map(|&a| piece.category.affordance_probability(a)).collect();
         let action = piece.category.affordances()[rng.weighted(&weights)];
         let n = if action == Action::Sit { sitters(piece, rng) } else { 1 };
+        let turned;
+        let piece = if action == Action::Touch
+            && layout.spacing().touch_any_side
+            && !super::rooms::stands_against_wall(piece.category)
+        {
+            turned = quarter_turned(piece, rng.range(0, 3));
+            &turned
+        } else {
+            piece
+        };
         for k in 0..n {
             let slot = if n == 1 { rng.uniform(-0.3, 0.3) } else { -1.0 + 2.0 * k as f64 / (n - 1) as f64 };
             let slot = if piece.category.group() == Group::Bed && action == Action::Sit {
@@ -170,6 +180,21 @@ pub fn contact_humans(layout: &Layout, objects: &[Object], rng: &mut Rng) -> Vec
         }
     }
     out
+}
+
+/// `piece` with its box turned by `quarters` quarter turns about its centre and its width and
+/// depth swapped each time: the same footprint, whose front is another of its sides (one quarter:
+/// the side that was its −x end).
+fn quarter_turned(piece: &Placed, quarters: usize) -> Placed {
+    let mut obox = piece.obox;
+    for _ in 0..quarters {
+        obox = OBox::new(
+            obox.center,
+            DVec3::new(obox.size.y, obox.size.x, obox.size.z),
+            obox.yaw + std::f64::consts::FRAC_PI_2,
+        );
+    }
+    Placed { obox, ..piece.clone() }
 }
 
 fn probability(p: &Placed) -> f64 {

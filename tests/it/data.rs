@@ -184,6 +184,59 @@ fn free_sofas_stand_out_in_the_room_with_a_walkway_behind() {
     assert!(free + at_wall > 100 && (0.2..=0.5).contains(&share), "{free} free, {at_wall} at a wall");
 }
 
+/// By default a person touching a piece stands at its front; with `touch_any_side`, a toucher of a
+/// piece that stands free of the walls (a table) stands at any of its four sides, one touching a
+/// wall piece still at its front, and the rooms keep every other rule and are the same rooms.
+#[test]
+fn touchers_of_free_pieces_stand_at_any_side() {
+    use glam::DVec3;
+    use shade_sim::scene::Action;
+    // For each toucher: whether the piece stands at a wall, and the side (0 front, 1 the −x end,
+    // 2 back, 3 the +x end) their pelvis is on, in the piece's own frame.
+    let sides = |spacing: Spacing, i: u64| -> Vec<(bool, usize)> {
+        let record = generate_spaced_room(RoomType::Dining, 6, i, false, spacing);
+        let s = &record.scene;
+        assert!(validate(s).is_empty(), "{i}: {:?}", validate(s));
+        let mut out = Vec::new();
+        for (k, &object) in record.contact_objects.iter().enumerate() {
+            let h = &s.humans[k];
+            if h.actions[0].action != Action::Touch {
+                continue;
+            }
+            let pelvis = h.skeleton.joints.iter().position(|j| j == "pelvis").expect("a pelvis");
+            let o = &s.objects[object];
+            let local = o.obox().to_local(DVec3::from(h.frames[0][pelvis]));
+            let (x, y) = (local.x / o.size[0], local.y / o.size[1]);
+            let side = if y.abs() >= x.abs() {
+                if y > 0.0 { 0 } else { 2 }
+            } else if x < 0.0 {
+                1
+            } else {
+                3
+            };
+            out.push((stands_against_wall(o.category), side));
+        }
+        out
+    };
+    let any = Spacing { touch_any_side: true, ..Spacing::EXACT };
+    let mut counts = [[0usize; 4]; 2];
+    for i in 0..400 {
+        assert!(sides(Spacing::EXACT, i).iter().all(|&(_, side)| side == 0), "{i}: a toucher not at the front");
+        for (wall, side) in sides(any, i) {
+            counts[wall as usize][side] += 1;
+        }
+        // Only touchers move: the furniture is the exact rules' draw for draw.
+        let exact = generate_spaced_room(RoomType::Dining, 6, i, false, Spacing::EXACT).scene;
+        let loose = generate_spaced_room(RoomType::Dining, 6, i, false, any).scene;
+        assert_eq!(exact.objects, loose.objects, "{i}");
+    }
+    let [free, wall] = counts;
+    assert!(wall[1..].iter().all(|&n| n == 0), "wall pieces touched off their front: {wall:?}");
+    // Each side of a free piece gets its share, less the sides a chair or a wall blocks.
+    let total: usize = free.iter().sum();
+    assert!(total >= 20 && free.iter().all(|&n| n * 20 >= total), "free pieces' touchers by side: {free:?}");
+}
+
 /// The raw dataset is as poor as 3D-FRONT HUMAN's, and calibration meets SHADE's Table 2 targets.
 #[test]
 fn calibration_fixes_the_raw_defect() {
