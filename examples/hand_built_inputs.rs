@@ -198,6 +198,24 @@ fn main() -> anyhow::Result<()> {
                 ],
             ),
         ),
+        // Four diners two a side of a table that runs east–west, and a person standing at its east
+        // end with a hand on the top: a table touched at its end, where the data only ever touched
+        // one from its long side (until `synth --touch-any-side`).
+        (
+            "dining_hand_at_the_head",
+            scene(
+                RoomType::Dining,
+                rect(5.0, 4.0),
+                vec![
+                    sitter("north_west", [2.0, 2.75], 0.46, 180.0),
+                    sitter("north_east", [2.7, 2.75], 0.46, 180.0),
+                    sitter("south_west", [2.0, 1.25], 0.46, 0.0),
+                    sitter("south_east", [2.7, 1.25], 0.46, 0.0),
+                    toucher("head", [3.15, 2.0, 0.75], 90.0),
+                    walker("serve", &[[0.4, 0.4], [4.6, 0.4]]),
+                ],
+            ),
+        ),
         // An L-shaped living room: two sitters side by side against the far wall of the L's arm,
         // a walker coming round its inner corner.
         (
