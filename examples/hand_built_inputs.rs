@@ -199,8 +199,8 @@ fn main() -> anyhow::Result<()> {
             ),
         ),
         // Four diners two a side of a table that runs east–west, and a person standing at its east
-        // end with a hand on the top: a table touched at its end, where the data only ever touched
-        // one from its long side (until `synth --touch-any-side`).
+        // end with a hand on the top: a table touched at its end, where the data touched a table
+        // only at its front, for most tables a long side (until `synth --touch-any-side`).
         (
             "dining_hand_at_the_head",
             scene(
