@@ -3,8 +3,7 @@
 # stand out in the room"): 8 samples per input (seed 3) with the default guidance and no repair,
 # those samples repaired, how many pass `check` (physics, no stability) each way, and what the
 # sitters sit on (`examples/seats_of_sitters.rs`: the side-by-side pairs that share one sofa).
-# The inputs go into one folder: `generate` seeds an input by its place among the folder's inputs
-# (by name), so a count is for this set of inputs.
+# The inputs share one folder, so a count is for this set of inputs (`hand_built_samples.sh`).
 # Usage: bash scripts/sofa_pairs.sh MODEL_DIR OUT_DIR   (e.g. models/living out/pairs/shipped)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,18 +13,7 @@ cargo build --release --quiet --bin shade-sim --example seats_of_sitters
 bin=./target/release/shade-sim
 inputs=(l_living_pair_and_walker living_at_an_angle open_plan_sofa_and_table three_on_a_sofa
     sofa_pair_a_metre_off_the_wall sofa_pair_in_the_open sofa_pair_walker_behind)
-rm -rf "$out"
-mkdir -p "$out/inputs"
-for name in "${inputs[@]}"; do cp "tests/inputs/$name.json" "$out/inputs/"; done
-$bin --no-progress -q generate --input "$out/inputs" --model "$model" --out "$out/alone" --samples 8 --seed 3 --no-repair
-$bin --no-progress -q repair "$out/alone" --out "$out/repaired"
-for run in alone repaired; do
-    for name in "${inputs[@]}"; do
-        clean=0
-        for scene in "$out/$run/${name}"_*.json; do
-            $bin -q check --no-stability "$scene" >/dev/null && clean=$((clean + 1))
-        done
-        echo "$run $name: $clean of 8 pass check"
-    done
-done
+inputs=("${inputs[@]/%/.json}")
+source scripts/hand_built_samples.sh
+hand_built_samples "$model" "$out" "${inputs[@]/#/tests/inputs/}"
 ./target/release/examples/seats_of_sitters "$out/alone" "$out/repaired" | grep -v '^    '
