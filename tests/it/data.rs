@@ -3,8 +3,8 @@
 use crate::{shade_sim, stderr};
 use shade_sim::data::layout::{Spacing, WALL_GAP};
 use shade_sim::data::{
-    DatasetStats, MAX_POINT_DEPTH, Rng, SplitStats, calibrate_scene, generate_room, generate_spaced_room, iou_target,
-    kl_divergence, split_of, stands_against_wall, target_frequencies,
+    DatasetStats, MAX_POINT_DEPTH, Rng, RoomRecord, SplitStats, calibrate_scene, generate_room, generate_spaced_room,
+    iou_target, kl_divergence, split_of, stands_against_wall, target_frequencies,
 };
 use shade_sim::eval::{contact_iou, scene_penetration};
 use shade_sim::geom::{footprint_intersection_area, intersection_volume};
@@ -193,8 +193,7 @@ fn touchers_of_free_pieces_stand_at_any_side() {
     use shade_sim::scene::Action;
     // For each toucher: whether the piece stands at a wall, and the side (0 front, 1 the −x end,
     // 2 back, 3 the +x end) their pelvis is on, in the piece's own frame.
-    let sides = |spacing: Spacing, i: u64| -> Vec<(bool, usize)> {
-        let record = generate_spaced_room(RoomType::Dining, 6, i, false, spacing);
+    let sides = |record: &RoomRecord, i: u64| -> Vec<(bool, usize)> {
         let s = &record.scene;
         assert!(validate(s).is_empty(), "{i}: {:?}", validate(s));
         let mut out = Vec::new();
@@ -221,14 +220,14 @@ fn touchers_of_free_pieces_stand_at_any_side() {
     let any = Spacing { touch_any_side: true, ..Spacing::EXACT };
     let mut counts = [[0usize; 4]; 2];
     for i in 0..400 {
-        assert!(sides(Spacing::EXACT, i).iter().all(|&(_, side)| side == 0), "{i}: a toucher not at the front");
-        for (wall, side) in sides(any, i) {
+        let exact = generate_spaced_room(RoomType::Dining, 6, i, false, Spacing::EXACT);
+        let loose = generate_spaced_room(RoomType::Dining, 6, i, false, any);
+        assert!(sides(&exact, i).iter().all(|&(_, side)| side == 0), "{i}: a toucher not at the front");
+        for (wall, side) in sides(&loose, i) {
             counts[wall as usize][side] += 1;
         }
         // Only touchers move: the furniture is the exact rules' draw for draw.
-        let exact = generate_spaced_room(RoomType::Dining, 6, i, false, Spacing::EXACT).scene;
-        let loose = generate_spaced_room(RoomType::Dining, 6, i, false, any).scene;
-        assert_eq!(exact.objects, loose.objects, "{i}");
+        assert_eq!(exact.scene.objects, loose.scene.objects, "{i}");
     }
     let [free, wall] = counts;
     assert!(wall[1..].iter().all(|&n| n == 0), "wall pieces touched off their front: {wall:?}");
