@@ -3,7 +3,8 @@
 # (embedded in the binary), unguided, with the three spatial terms (`all`) and with the default
 # pipeline (`all` guidance and repair: the `all` samples repaired, which `shade-sim repair` reproduces exactly),
 # and `shade-sim eval` (with physics) against the calibrated dataset (with DATA_DIR/<room>-extra and
-# <room>-extra2, the further draws the model also trained on, as `--extra-data` where they exist).
+# <room>-extra2 and <room>-touch, the further draws the model also trained on, as `--extra-data`
+# where they exist).
 # Usage: bash scripts/eval_models.sh [DATA_DIR] [OUT_DIR] [ROOMS…]   (defaults: data out/eval, all rooms)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,7 +27,7 @@ for room in "${rooms[@]}"; do
     echo "## $room"
     # The second draw the model also trained on (models/MODEL_CARD.md) joins the counts a real room has.
     extra=()
-    for draw in "$data/$room-extra" "$data/$room-extra2"; do
+    for draw in "$data/$room-extra" "$data/$room-extra2" "$data/$room-touch"; do
         [ -d "$draw" ] && extra+=(--extra-data "$draw")
     done
     $bin --no-progress eval --pred "$out/$room/none" "$out/$room/all" "$out/$room/all+repair" --ref "$data/$room" \

@@ -2,8 +2,9 @@
 # Reproduces the shipped models (models/MODEL_CARD.md): the clean calibrated datasets at SHADE's
 # sizes (`--require-clean`: every room passes `check`), second draws of 13,650 bedrooms, 8,961
 # living rooms and 7,647 dining rooms (seed 1) and thirds of 27,300 bedrooms, 17,922 living
-# rooms and 20,000 dining rooms (seed 2) that join their training splits (`--extra-data`; val and
-# test stay the first draw's), then the three trainings with rare categories weighed up
+# rooms and 20,000 dining rooms (seed 2; a person's hand on a table at any of its sides,
+# `synth --touch-any-side`) that join their training splits (`--extra-data`; val and test stay
+# the first draw's), then the three trainings with rare categories weighed up
 # (--category-balance 0.25), one after another, each on every core: bedrooms 240,000 steps
 # (about 110 minutes alone on a 2-core machine, plus 13 for the extra rooms), living rooms 200,000
 # (about 121, plus 12), dining rooms 170,000 (about 106, plus 15).
@@ -23,11 +24,13 @@ for spec in bedroom:5689 living:2987 dining:2549; do
     $bin --no-progress -q synth --room "$room" --scenes "$n" --seed 0 --out "$data/$room-raw" --require-clean
     $bin --no-progress -q calibrate --data "$data/$room-raw" --out "$data/$room" --require-clean "${overlap[@]}"
 done
-# DRAW:ROOM:SCENES:SEED: more rooms of ROOM, drawn with SEED, in DATA_DIR/ROOM-DRAW.
-for spec in extra:bedroom:13650:1 extra:living:8961:1 extra:dining:7647:1 extra2:bedroom:27300:2 extra2:living:17922:2 extra2:dining:20000:2; do
-    IFS=: read -r draw room n seed <<< "$spec"
+# DRAW:ROOM:SCENES:SEED[:SYNTH_FLAG]: more rooms of ROOM, drawn with SEED, in DATA_DIR/ROOM-DRAW.
+# The dining rooms' third draw lets a person touching a table stand at any of its sides (`synth
+# --touch-any-side`; docs/RESULTS.md, "A hand on a table's end").
+for spec in extra:bedroom:13650:1 extra:living:8961:1 extra:dining:7647:1 extra2:bedroom:27300:2 extra2:living:17922:2 touch:dining:20000:2:--touch-any-side; do
+    IFS=: read -r draw room n seed flag <<< "$spec"
     [ -f "$data/$room-$draw/stats.json" ] && continue
-    $bin --no-progress -q synth --room "$room" --scenes "$n" --seed "$seed" --out "$data/$room-$draw-raw" --require-clean
+    $bin --no-progress -q synth --room "$room" --scenes "$n" --seed "$seed" --out "$data/$room-$draw-raw" --require-clean ${flag:+"$flag"}
     $bin --no-progress -q calibrate --data "$data/$room-$draw-raw" --out "$data/$room-$draw" --require-clean "${overlap[@]}"
 done
 # train ROOM[:FOLDER] STEPS BALANCE ARGS…: ROOM's data, the model written to models/FOLDER (ROOM's own by default).
@@ -57,6 +60,6 @@ train living 200000 0.25 --extra-data "$data/living-extra" --extra-data "$data/l
 # Its default sampler, DDIM's η 1.5 on the geometry (docs/RESULTS.md, "Fresh noise on the dining
 # rooms' geometry"), goes into its config.json. 29,686 rooms for 170,000 steps, most of the
 # 150 minutes the model issue allows (docs/RESULTS.md, "The dining model for 170,000 steps").
-train dining 170000 0.25 --extra-data "$data/dining-extra" --extra-data "$data/dining-extra2" \
+train dining 170000 0.25 --extra-data "$data/dining-extra" --extra-data "$data/dining-touch" \
     --anchored-yaw box --wall-features false \
     --prediction v --schedule log_snr --min-snr 5 --min-snr-floor 1 --geometry-eta 1.5
