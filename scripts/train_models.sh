@@ -7,7 +7,7 @@
 # the first draw's), then the three trainings with rare categories weighed up
 # (--category-balance 0.25), one after another, each on every core: bedrooms 240,000 steps
 # (about 110 minutes alone on a 2-core machine, plus 13 for the extra rooms), living rooms 200,000
-# (about 121, plus 12), dining rooms 170,000 (about 106, plus 15).
+# (about 121, plus 12), dining rooms 170,000 (about 126, plus 15).
 # Usage: bash scripts/train_models.sh [DATA_DIR] [MODELS_DIR]   (defaults: data, models)
 set -euo pipefail
 cd "$(dirname "$0")/.."
