@@ -11,9 +11,12 @@
 //! its table, …) are exact by default; with a [`Spacing`] spread each one is drawn afresh for every
 //! piece, as a room furnished by hand keeps them only roughly. A [`Spacing`] may also stand a share
 //! of the sofas out in the room, their backs [`FREE_SOFA_BACK`] off the wall behind them with a
-//! walkway there, as open-plan rooms have them; by default every sofa stands at a wall.
+//! walkway there, as open-plan rooms have them; by default every sofa stands at a wall. Its last
+//! two settings are read when people are put in the room (`data::people`): at which sides of a
+//! table a person touching it may stand, and how often a piece people touch gets one.
 
 use super::Rng;
+use super::people::TOUCH_CHANCE;
 use crate::furniture::{SIZE_JITTER, catalog_items};
 use crate::geom::{OBox, Polygon, Wall, facing, footprint_intersection_area, intersection_volume, yaw_facing};
 use crate::scene::{Category, FloorPlan, Group, Object};
@@ -67,6 +70,10 @@ pub struct Spacing {
     /// rooms of the exact rules draw for draw). A side with no room for them drops the toucher,
     /// as a blocked front does.
     pub touch_any_side: bool,
+    /// The chance that a piece people touch rather than sit or lie on (a table, a cabinet, a
+    /// wardrobe) gets a person touching it ([`TOUCH_CHANCE`] = the rooms of the exact rules draw
+    /// for draw: the chance is drawn against either way, so only who touches changes).
+    pub touch_chance: f64,
 }
 
 /// How far (m) the back of a sofa that stands out in the room is from the wall behind it: a
@@ -75,8 +82,10 @@ pub struct Spacing {
 pub const FREE_SOFA_BACK: (f64, f64) = (0.8, 1.4);
 
 impl Spacing {
-    /// The rules' gaps exactly, every sofa at a wall.
-    pub const EXACT: Spacing = Spacing { spread: 0.0, free_sofas: 0.0, touch_any_side: false };
+    /// The rules' gaps exactly, every sofa at a wall, a person touching a piece at its front, and
+    /// pieces touched as often as in 3D-FRONT HUMAN.
+    pub const EXACT: Spacing =
+        Spacing { spread: 0.0, free_sofas: 0.0, touch_any_side: false, touch_chance: TOUCH_CHANCE };
 
     /// The gap for a rule whose own is `rule` (m): `rule` itself when exact, else a draw.
     pub fn gap(&self, rule: f64, rng: &mut Rng) -> f64 {

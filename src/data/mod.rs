@@ -27,7 +27,7 @@ pub use calibrate_dataset::{CALIBRATION_DRAWS, CalibrationReport, Unfixable, cal
 pub use error::DataError;
 pub use floor_gen::{Shape, area_range, sample_floor};
 pub use import::{floor_outline, import_dataset, import_room};
-pub use people::{WALK_FPS, contact_pose, contact_probability, misplace, translate};
+pub use people::{TOUCH_CHANCE, WALK_FPS, contact_pose, contact_probability, misplace, translate};
 pub use rng::Rng;
 pub use rooms::{
     CheckedRoom, RoomRecord, furnish, generate_checked_room, generate_room, generate_spaced_room, placed_against_wall,

@@ -138,11 +138,11 @@ pub fn contact_humans(layout: &Layout, objects: &[Object], rng: &mut Rng) -> Vec
     let mut out: Vec<(Action, usize, Human)> = Vec::new();
     let candidates: Vec<usize> =
         (0..layout.placed.len()).filter(|&i| !layout.placed[i].category.affordances().is_empty()).collect();
-    let mut chosen: Vec<usize> =
-        candidates.iter().copied().filter(|&i| rng.chance(probability(&layout.placed[i]))).collect();
+    let probability = |i: usize| contact_probability(layout.placed[i].category, layout.spacing().touch_chance);
+    let mut chosen: Vec<usize> = candidates.iter().copied().filter(|&i| rng.chance(probability(i))).collect();
     if chosen.is_empty() && !candidates.is_empty() {
         // At least one contact human per room, preferably sitting or lying.
-        let weights: Vec<f64> = candidates.iter().map(|&i| probability(&layout.placed[i])).collect();
+        let weights: Vec<f64> = candidates.iter().map(|&i| probability(i)).collect();
         chosen.push(candidates[rng.weighted(&weights)]);
     }
     for i in chosen {
@@ -197,19 +197,20 @@ fn quarter_turned(piece: &Placed, quarters: usize) -> Placed {
     Placed { obox, ..piece.clone() }
 }
 
-fn probability(p: &Placed) -> f64 {
-    contact_probability(p.category)
-}
+/// The chance that a piece people touch rather than sit or lie on gets a contact person in the
+/// data by default: touching humans are the minority in 3D-FRONT HUMAN, whose contact humans
+/// mostly sit and lie (`synth --touch-chance` draws rooms with another).
+pub const TOUCH_CHANCE: f64 = 0.06;
 
 /// The chance that the data puts a contact person on a piece of `category` (before choosing the
-/// action among its affordances).
-pub fn contact_probability(category: Category) -> f64 {
+/// action among its affordances), a piece people only touch getting one with `touch_chance`
+/// ([`TOUCH_CHANCE`] in the data the shipped models learnt from).
+pub fn contact_probability(category: Category, touch_chance: f64) -> f64 {
     match category.group() {
         Group::Bed => 0.85,
         Group::Sofa => 0.7,
         Group::Chair | Group::Stool => 0.45,
-        // Touching humans are the minority in 3D-FRONT HUMAN, whose contact humans mostly sit and lie.
-        _ => 0.06,
+        _ => touch_chance,
     }
 }
 

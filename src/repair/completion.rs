@@ -20,7 +20,7 @@
 //! limit. This module only makes the objects; repair moves them with the rest.
 
 use super::config::{CompletionConfig, HoldingConfig};
-use crate::data::{Rng, contact_probability, target_frequencies};
+use crate::data::{Rng, TOUCH_CHANCE, contact_probability, target_frequencies};
 use crate::furniture::{catalog_items, template_of};
 use crate::geom::{OBox, facing, wrap_angle};
 use crate::human::{ContactBox, KNEE_OVERHANG};
@@ -209,7 +209,7 @@ fn drawn(room: RoomType, contact: &ContactBox, accepts: impl Fn(Category) -> boo
         .map(|(&c, &f)| {
             let total: f64 = c.affordances().iter().map(|&a| c.affordance_probability(a)).sum();
             let share = if total > 0.0 { c.affordance_probability(contact.action) / total } else { 0.0 };
-            if accepts(c) { f * contact_probability(c) * share } else { 0.0 }
+            if accepts(c) { f * contact_probability(c, TOUCH_CHANCE) * share } else { 0.0 }
         })
         .collect();
     if weights.iter().all(|w| *w <= 0.0) {
