@@ -25,7 +25,7 @@ for room in "${rooms[@]}"; do
     rm -rf "$out/$room/all+repair"
     $bin --no-progress -q repair "$out/$room/all" --out "$out/$room/all+repair"
     echo "## $room"
-    # The second draw the model also trained on (models/MODEL_CARD.md) joins the counts a real room has.
+    # The further draws the model also trained on (models/MODEL_CARD.md) join the counts a real room has.
     extra=()
     for draw in "$data/$room-extra" "$data/$room-extra2" "$data/$room-touch"; do
         [ -d "$draw" ] && extra+=(--extra-data "$draw")

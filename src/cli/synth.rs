@@ -65,15 +65,16 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
         "--touch-chance: must be a chance between 0 and 1, not {}",
         args.touch_chance
     );
-    let mut spread = if args.gap_spread > 0.0 { format!(" --gap-spread {}", args.gap_spread) } else { String::new() };
+    // The layout and people settings that differ from the defaults, as the command line gave them.
+    let mut flags = if args.gap_spread > 0.0 { format!(" --gap-spread {}", args.gap_spread) } else { String::new() };
     if args.free_sofas > 0.0 {
-        spread.push_str(&format!(" --free-sofas {}", args.free_sofas));
+        flags.push_str(&format!(" --free-sofas {}", args.free_sofas));
     }
     if args.touch_any_side {
-        spread.push_str(" --touch-any-side");
+        flags.push_str(" --touch-any-side");
     }
     if args.touch_chance != TOUCH_CHANCE {
-        spread.push_str(&format!(" --touch-chance {}", args.touch_chance));
+        flags.push_str(&format!(" --touch-chance {}", args.touch_chance));
     }
     let cfg = SynthConfig {
         room: args.room.into(),
@@ -86,7 +87,7 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
             touch_chance: args.touch_chance,
         },
         command: format!(
-            "shade-sim synth --room {} --scenes {} --seed {} --out {}{}{spread}",
+            "shade-sim synth --room {} --scenes {} --seed {} --out {}{}{flags}",
             args.room.name(),
             args.scenes,
             args.seed,

@@ -238,7 +238,7 @@ fn touchers_of_free_pieces_stand_at_any_side() {
 
 /// `touch_chance` is the chance a piece people only touch gets a toucher: at 0.5 instead of the
 /// data's 0.06 the same rooms (the furniture draw for draw) hold several times the touchers, and
-/// no fewer sitters and sleepers than a toucher's body can crowd out.
+/// no fewer sitters than a toucher's body can crowd out.
 #[test]
 fn a_higher_touch_chance_puts_more_hands_on_the_same_rooms() {
     use shade_sim::scene::Action;
