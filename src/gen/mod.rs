@@ -27,6 +27,7 @@ pub mod gaps;
 mod generate;
 mod grad;
 pub mod guidance;
+mod guidance_config;
 pub mod inference;
 mod matmul;
 mod model;
