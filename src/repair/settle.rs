@@ -275,12 +275,17 @@ fn complete_supports(
 /// The yaw `o` takes for the person of `contact`: a chair, stool or sofa faces like its sitter (its
 /// front the way they face), a sofa lies along its sleeper (the body along its local x, as the data
 /// lays people on sofas), a bed a quarter turn where its sitter faces along it, a touched table,
-/// cabinet or shelf faces its toucher (its front towards them, as the data touches pieces). Beds are
-/// not turned to their sleepers (that made penetrating bedrooms more frequent: 0.886 → 0.909 of the
+/// cabinet or shelf presents a side to its toucher: its front where it stands against a wall (the
+/// only side a wall piece has), else the side nearest the way it stands (a dining table touched
+/// at its end keeps its diners; `synth --touch-any-side` touches free pieces so). Beds are not
+/// turned to their sleepers (that made penetrating bedrooms more frequent: 0.886 → 0.909 of the
 /// test split).
 fn facing_yaw(o: &Object, contact: &ContactBox) -> Option<f64> {
     match (o.category.group(), contact.action) {
-        (Group::Table | Group::Cabinet | Group::Shelf, Action::Touch) => Some(contact.obox.yaw + std::f64::consts::PI),
+        (Group::Table | Group::Cabinet | Group::Shelf, Action::Touch) => {
+            let front = contact.obox.yaw + std::f64::consts::PI;
+            Some(if stands_against_wall(o.category) { front } else { square_yaw(o.yaw, front) })
+        }
         (Group::Chair | Group::Stool | Group::Sofa, Action::Sit) => Some(contact.obox.yaw),
         (Group::Sofa, Action::Lie) => Some(contact.obox.yaw + std::f64::consts::FRAC_PI_2),
         // A quarter turn where the sitter faces along the bed: the data seats people on its sides.

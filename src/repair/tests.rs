@@ -257,9 +257,12 @@ fn rooms_with_held(
 }
 
 #[test]
-fn a_touched_piece_turned_away_turns_back_to_face_its_toucher() {
-    let cabinet_like =
-        |o: &Object, _: &ContactBox| matches!(o.category.group(), Group::Cabinet | Group::Shelf | Group::Table);
+fn a_touched_wall_piece_turned_away_turns_back_to_face_its_toucher() {
+    // A piece the data stands against a wall has one side to touch: its front.
+    let cabinet_like = |o: &Object, _: &ContactBox| {
+        matches!(o.category.group(), Group::Cabinet | Group::Shelf | Group::Table)
+            && crate::data::stands_against_wall(o.category)
+    };
     let rooms = rooms_with_held(RoomType::Bedroom, Action::Touch, cabinet_like)
         .map(|r| (RoomType::Bedroom, r))
         .chain(rooms_with_held(RoomType::Living, Action::Touch, cabinet_like).map(|r| (RoomType::Living, r)));
@@ -275,6 +278,50 @@ fn a_touched_piece_turned_away_turns_back_to_face_its_toucher() {
         checked += 1;
     }
     assert_eq!(checked, 3, "rooms with a touched piece checked");
+}
+
+#[test]
+fn a_table_touched_at_its_end_keeps_its_long_sides_to_its_diners() {
+    use crate::human::{Body, Motion, Side, sit, touch};
+    use crate::scene::Category;
+    // Four diners along a table running east–west, a fifth person's hand on its east end. A free
+    // piece may be touched at any side (`synth --touch-any-side`): repair must not turn the table a
+    // quarter turn to present its front to the hand, which left the west diners at no table.
+    let mut scene = generate_room(RoomType::Dining, 3, 0, false).scene;
+    scene.floor_plan.polygon = vec![[0.0, 0.0], [5.0, 0.0], [5.0, 4.0], [0.0, 4.0]];
+    let body = Body::default();
+    let mut humans: Vec<_> =
+        [(2.1, 1.35, 0.0), (2.9, 1.35, 0.0), (2.1, 2.65, std::f64::consts::PI), (2.9, 2.65, std::f64::consts::PI)]
+            .iter()
+            .enumerate()
+            .map(|(k, &(x, y, yaw))| {
+                let mut m = Motion::new(body, 30.0);
+                m.hold(sit(&body, DVec2::new(x, y), 0.46, yaw), 3, Action::Sit);
+                m.into_human(format!("d{k}"))
+            })
+            .collect();
+    let mut hand = Motion::new(body, 30.0);
+    hand.hold(touch(&body, DVec3::new(3.25, 2.0, 0.75), std::f64::consts::FRAC_PI_2, Side::Right), 3, Action::Touch);
+    humans.push(hand.into_human("hand"));
+    scene.humans = humans;
+    let table = Object::standing("o0", Category::DiningTable, [2.5, 2.0], [1.6, 0.9, 0.75]);
+    let chairs =
+        [(2.1, 1.35, 0.0), (2.9, 1.35, 0.0), (2.1, 2.65, std::f64::consts::PI), (2.9, 2.65, std::f64::consts::PI)]
+            .iter()
+            .enumerate()
+            .map(|(k, &(x, y, yaw))| {
+                let mut c = Object::standing(&format!("c{k}"), Category::DiningChair, [x, y], [0.45, 0.5, 0.88]);
+                c.yaw = yaw;
+                c
+            });
+    scene.objects = std::iter::once(table).chain(chairs).collect();
+    let touch_box = Conditions::contact_boxes_of(&scene).into_iter().find(|b| b.human == "hand").unwrap();
+    assert!(facing(touch_box.obox.yaw).x < -0.99, "the hand's person faces west, the table's end: {touch_box:?}");
+    repair_with_rounds(&mut scene, 30);
+    let table = scene.objects.iter().find(|o| o.category == Category::DiningTable).unwrap();
+    assert!(table.yaw.sin().abs() < 1e-6, "the table stays east–west: {table:?}");
+    assert!(table.size[0] > table.size[1], "{table:?}");
+    assert!(contact_iou(&touch_box.obox, std::slice::from_ref(table)) > 0.5, "the hand is still on it: {table:?}");
 }
 
 #[test]
