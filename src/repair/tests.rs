@@ -284,36 +284,33 @@ fn a_touched_wall_piece_turned_away_turns_back_to_face_its_toucher() {
 fn a_table_touched_at_its_end_keeps_its_long_sides_to_its_diners() {
     use crate::human::{Body, Motion, Side, sit, touch};
     use crate::scene::Category;
+    use std::f64::consts::{FRAC_PI_2, PI};
     // Four diners along a table running east–west, a fifth person's hand on its east end. A free
     // piece may be touched at any side (`synth --touch-any-side`): repair must not turn the table a
     // quarter turn to present its front to the hand, which left the west diners at no table.
     let mut scene = generate_room(RoomType::Dining, 3, 0, false).scene;
     scene.floor_plan.polygon = vec![[0.0, 0.0], [5.0, 0.0], [5.0, 4.0], [0.0, 4.0]];
+    // Each diner's seat: x, y, the way they face (the south pair north, the north pair south).
+    let seats = [(2.1, 1.35, 0.0), (2.9, 1.35, 0.0), (2.1, 2.65, PI), (2.9, 2.65, PI)];
     let body = Body::default();
-    let mut humans: Vec<_> =
-        [(2.1, 1.35, 0.0), (2.9, 1.35, 0.0), (2.1, 2.65, std::f64::consts::PI), (2.9, 2.65, std::f64::consts::PI)]
-            .iter()
-            .enumerate()
-            .map(|(k, &(x, y, yaw))| {
-                let mut m = Motion::new(body, 30.0);
-                m.hold(sit(&body, DVec2::new(x, y), 0.46, yaw), 3, Action::Sit);
-                m.into_human(format!("d{k}"))
-            })
-            .collect();
+    let mut humans: Vec<_> = seats
+        .iter()
+        .enumerate()
+        .map(|(k, &(x, y, yaw))| {
+            let mut m = Motion::new(body, 30.0);
+            m.hold(sit(&body, DVec2::new(x, y), 0.46, yaw), 3, Action::Sit);
+            m.into_human(format!("d{k}"))
+        })
+        .collect();
     let mut hand = Motion::new(body, 30.0);
-    hand.hold(touch(&body, DVec3::new(3.25, 2.0, 0.75), std::f64::consts::FRAC_PI_2, Side::Right), 3, Action::Touch);
+    hand.hold(touch(&body, DVec3::new(3.25, 2.0, 0.75), FRAC_PI_2, Side::Right), 3, Action::Touch);
     humans.push(hand.into_human("hand"));
     scene.humans = humans;
     let table = Object::standing("o0", Category::DiningTable, [2.5, 2.0], [1.6, 0.9, 0.75]);
-    let chairs =
-        [(2.1, 1.35, 0.0), (2.9, 1.35, 0.0), (2.1, 2.65, std::f64::consts::PI), (2.9, 2.65, std::f64::consts::PI)]
-            .iter()
-            .enumerate()
-            .map(|(k, &(x, y, yaw))| {
-                let mut c = Object::standing(&format!("c{k}"), Category::DiningChair, [x, y], [0.45, 0.5, 0.88]);
-                c.yaw = yaw;
-                c
-            });
+    let chairs = seats.iter().enumerate().map(|(k, &(x, y, yaw))| Object {
+        yaw,
+        ..Object::standing(format!("c{k}"), Category::DiningChair, [x, y], [0.45, 0.5, 0.88])
+    });
     scene.objects = std::iter::once(table).chain(chairs).collect();
     let touch_box = Conditions::contact_boxes_of(&scene).into_iter().find(|b| b.human == "hand").unwrap();
     assert!(facing(touch_box.obox.yaw).x < -0.99, "the hand's person faces west, the table's end: {touch_box:?}");
