@@ -419,6 +419,7 @@ fn mujoco_and_rapier_agree_on_the_reference_scenes_shallow_contacts() {
         }
     }
     // Enough to compare, not a count of the layouts' faults: cleaner layouts have fewer (189 on
-    // the reference scenes of 2026-11, 91 on those of 2026-12-06).
-    assert!(compared >= 50, "{compared} shallow contacts compared");
+    // the reference scenes of 2026-11, 91 on those of the morning of 2026-12-06, 46 since repair
+    // stopped turning the demo's touched dining table).
+    assert!(compared >= 40, "{compared} shallow contacts compared");
 }
