@@ -50,9 +50,12 @@ pub struct TrainArgs {
     /// Scenes per batch.
     #[arg(long, default_value_t = 32)]
     pub batch: usize,
-    /// Peak learning rate (warm-up, then cosine to a tenth).
+    /// Peak learning rate (warm-up, then cosine down to --lr-final of it).
     #[arg(long, default_value_t = 3e-4)]
     pub lr: f64,
+    /// The learning rate at the last step, as a fraction of the peak (0 to 1).
+    #[arg(long, default_value_t = 0.1)]
+    pub lr_final: f64,
     /// Model size: small (shipped; the default), medium (wider), deep (8 blocks) or tiny (tests).
     #[arg(long)]
     pub preset: Option<String>,
@@ -351,6 +354,11 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     opts.batch = args.batch;
     anyhow::ensure!(args.lr.is_finite() && args.lr > 0.0, "--lr: must be a positive number");
     opts.lr = args.lr;
+    anyhow::ensure!(
+        (0.0..=1.0).contains(&args.lr_final),
+        "--lr-final: must be a fraction of the peak, from 0 to 1"
+    );
+    opts.lr_final = args.lr_final;
     opts.seed = args.seed;
     opts.resume = args.resume;
     opts.init = args.init.clone();

@@ -37,6 +37,10 @@ pub struct TrainingInfo {
     pub batch: usize,
     /// Peak learning rate.
     pub lr: f64,
+    /// The learning rate at the last step as a fraction of the peak (`train --lr-final`; 0.1 in
+    /// files written before it was a setting, the only end the schedule then had).
+    #[serde(default = "default_lr_final")]
+    pub lr_final: f64,
     /// EMA decay of the shipped weights.
     pub ema_decay: f64,
     /// Seed of initialisation, batches and noise.
@@ -53,6 +57,10 @@ pub struct TrainingInfo {
     /// weights; absent in files written before fine-tuning existed.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub init: Option<InitialWeights>,
+}
+
+fn default_lr_final() -> f64 {
+    0.1
 }
 
 /// The model folder a fine-tuning run started from, and the hash of the weights it took.

@@ -52,6 +52,9 @@ pub struct TrainOptions {
     pub batch: usize,
     /// Peak learning rate.
     pub lr: f64,
+    /// The learning rate at the last step, as a fraction of the peak: the cosine falls from `lr`
+    /// to `lr * lr_final` (default 0.1).
+    pub lr_final: f64,
     /// Linear warm-up steps.
     pub warmup: u64,
     /// EMA decay.
@@ -114,6 +117,7 @@ impl TrainOptions {
             steps: 12_000,
             batch: 32,
             lr: 3e-4,
+            lr_final: 0.1,
             warmup: 500,
             ema_decay: 0.999,
             seed: 0,
@@ -134,14 +138,15 @@ impl TrainOptions {
         }
     }
 
-    /// Learning rate at `step`: linear warm-up, then cosine down to a tenth.
+    /// Learning rate at `step`: linear warm-up, then cosine down to `lr * lr_final`.
     pub fn lr_at(&self, step: u64) -> f64 {
         if step < self.warmup {
             return self.lr * (step + 1) as f64 / self.warmup as f64;
         }
         let span = self.steps.saturating_sub(self.warmup).max(1) as f64;
         let progress = ((step - self.warmup) as f64 / span).min(1.0);
-        self.lr * (0.1 + 0.9 * 0.5 * (1.0 + (std::f64::consts::PI * progress).cos()))
+        let cosine = 0.5 * (1.0 + (std::f64::consts::PI * progress).cos());
+        self.lr * (self.lr_final + (1.0 - self.lr_final) * cosine)
     }
 }
 
@@ -360,6 +365,7 @@ pub fn train(
         target_steps: opts.steps,
         batch: opts.batch,
         lr: opts.lr,
+        lr_final: opts.lr_final,
         ema_decay: opts.ema_decay,
         seed: opts.seed,
         category_balance: opts.category_balance,
@@ -610,5 +616,16 @@ mod tests {
         assert!((o.lr_at(100) - 1e-3).abs() < 1e-12);
         assert!((o.lr_at(600) - 0.55e-3).abs() < 1e-12);
         assert!((o.lr_at(1100) - 1e-4).abs() < 1e-12);
+    }
+
+    #[test]
+    fn learning_rate_ends_at_the_chosen_fraction_of_the_peak() {
+        let mut o = TrainOptions::new(PathBuf::new(), PathBuf::new(), ModelConfig::tiny(RoomType::Bedroom));
+        (o.steps, o.warmup, o.lr, o.lr_final) = (1100, 100, 1e-3, 0.01);
+        assert!((o.lr_at(100) - 1e-3).abs() < 1e-12);
+        assert!((o.lr_at(600) - 0.505e-3).abs() < 1e-12);
+        assert!((o.lr_at(1100) - 1e-5).abs() < 1e-12);
+        o.lr_final = 1.0;
+        assert!((o.lr_at(850) - 1e-3).abs() < 1e-12);
     }
 }
