@@ -354,10 +354,7 @@ pub fn run(args: &TrainArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatus> 
     opts.batch = args.batch;
     anyhow::ensure!(args.lr.is_finite() && args.lr > 0.0, "--lr: must be a positive number");
     opts.lr = args.lr;
-    anyhow::ensure!(
-        (0.0..=1.0).contains(&args.lr_final),
-        "--lr-final: must be a fraction of the peak, from 0 to 1"
-    );
+    anyhow::ensure!((0.0..=1.0).contains(&args.lr_final), "--lr-final: must be a fraction of the peak, from 0 to 1");
     opts.lr_final = args.lr_final;
     opts.seed = args.seed;
     opts.resume = args.resume;

@@ -448,16 +448,18 @@ fn train_writes_a_checkpoint_and_generate_is_deterministic() {
     assert!(stderr(&again).contains("--resume"), "{}", stderr(&again));
 
     // The model's default sampler goes into its config.json, as the shipped dining model's, and
-    // so does another EMA decay.
+    // so do another EMA decay and another end of the learning rate's cosine.
     let with_eta = dir.path().join("with_eta");
-    let o = train_cli_with(&data, &with_eta, &["--geometry-eta", "1.5", "--ema-decay", "0.99"]);
+    let o = train_cli_with(&data, &with_eta, &["--geometry-eta", "1.5", "--ema-decay", "0.99", "--lr-final", "0.01"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let meta = Checkpoint::load(&with_eta).unwrap().meta;
     assert_eq!(meta.sampling, Some(shade_sim::generator::SamplingDefaults { geometry_eta: 1.5 }));
-    assert_eq!(meta.training.ema_decay, 0.99);
+    assert_eq!((meta.training.ema_decay, meta.training.lr_final), (0.99, 0.01));
+    assert_eq!(Checkpoint::load(&model).unwrap().meta.training.lr_final, 0.1, "the default end: a tenth");
     for (extra, want) in [
         (["--geometry-eta", "3"], "error: --geometry-eta: must be between 0 and 2"),
         (["--lr", "-1"], "error: --lr: must be a positive number"),
+        (["--lr-final", "2"], "error: --lr-final: must be a fraction of the peak, from 0 to 1"),
         (["--ema-decay", "1"], "error: --ema-decay: must be a number between 0 and 1, not 1"),
         (["--relation-loss", "-1"], "error: --relation-loss: must be a non-negative number, not -1"),
     ] {
