@@ -53,8 +53,8 @@ train bedroom 240000 0.25 --extra-data "$data/bedroom-extra" --extra-data "$data
 # scored worse on their val splits (docs/RESULTS.md). The living model is the bedrooms' v model
 # on 29,273 rooms for 200,000 steps; it replaced an x0 model that needed a low-noise expert for
 # its last steps (docs/RESULTS.md, "The living model as a v model"), and samples with DDIM's
-# eta 2 on the geometry (1.5, the dining model's, until the rate below; chosen on val, recorded
-# in its config.json; docs/RESULTS.md, "The living model's geometry at η 2").
+# eta 2 on the geometry (chosen on val; recorded in its config.json; docs/RESULTS.md, "The living
+# model's geometry at η 2").
 # A peak learning rate of 1e-3, as the bedrooms': val SCA 0.035 / 0.029 lower over three seeds
 # (docs/RESULTS.md, "The living model at a peak of 1e-3").
 train living 200000 0.25 --extra-data "$data/living-extra" --extra-data "$data/living-extra2" \
