@@ -65,7 +65,7 @@ pub struct GenerateArgs {
     #[arg(long)]
     pub eta: Option<f64>,
     /// Apply --eta to the pieces' geometry only (centre, size, yaw), the classes keeping DDPM's
-    /// chain (the shipped dining and living models sample with 1.5 there).
+    /// chain (the shipped living and dining models sample with η 2 there).
     #[arg(long, requires = "eta")]
     pub eta_geometry_only: bool,
     /// With a count-conditioned model: condition each layout on the input's own pieces per

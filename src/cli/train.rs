@@ -160,7 +160,7 @@ pub struct TrainArgs {
     pub input_perturbation: f64,
     /// The model's default sampler, recorded in config.json's `sampling`: DDIM's η on the pieces'
     /// geometry (0 to 2), the classes on DDPM's chain, as `generate --eta ETA --eta-geometry-only`
-    /// (default: none, DDPM's chain; 1.5 for the shipped dining and living models).
+    /// (default: none, DDPM's chain; 2 for the shipped living and dining models).
     #[arg(long, value_name = "ETA")]
     pub geometry_eta: Option<f64>,
     /// Share of training scenes with one free piece moved 6 to 50 cm before the noise, the target

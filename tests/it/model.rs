@@ -1072,16 +1072,16 @@ fn the_shipped_dining_model_samples_with_its_own_geometry_eta() {
     let input = Scene::load(root().join("scenes/examples/dining_rect.json")).unwrap();
     let shipped = shade_sim::generator::shipped_model(RoomType::Dining).unwrap();
     let sampling = shipped.meta.sampling.clone().expect("the dining model's sampling defaults");
-    assert_eq!(sampling.geometry_eta, 1.5);
+    assert_eq!(sampling.geometry_eta, 2.0);
     let rooms = |g: &Generator| g.generate(std::slice::from_ref(&input), 2, 6).unwrap();
-    // Its default is η 1.5 on the geometry with the classes on DDPM's chain: the same rooms as
+    // Its default is η 2 on the geometry with the classes on DDPM's chain: the same rooms as
     // the model without the setting asked for it, and others than DDPM's chain everywhere.
     let plain = Checkpoint {
         meta: shade_sim::generator::CheckpointMeta { sampling: None, ..shipped.meta.clone() },
         ..shipped.clone()
     };
     let default = rooms(&Generator::new(shipped.clone()));
-    assert_eq!(default, rooms(&Generator::new(plain.clone()).with_geometry_eta(1.5)));
+    assert_eq!(default, rooms(&Generator::new(plain.clone()).with_geometry_eta(2.0)));
     assert_ne!(default, rooms(&Generator::new(plain.clone())));
     assert_eq!(rooms(&Generator::new(shipped).with_eta(1.0)), rooms(&Generator::new(plain)));
     // A geometry η outside [0, 2] is a bad config; --eta-geometry-only needs --eta.
@@ -1091,7 +1091,7 @@ fn the_shipped_dining_model_samples_with_its_own_geometry_eta() {
     let models = root().join("models/dining");
     std::fs::copy(models.join("model.safetensors"), folder.join("model.safetensors")).unwrap();
     let config = std::fs::read_to_string(models.join("config.json")).unwrap();
-    std::fs::write(folder.join("config.json"), config.replace("\"geometry_eta\": 1.5", "\"geometry_eta\": 3.0"))
+    std::fs::write(folder.join("config.json"), config.replace("\"geometry_eta\": 2.0", "\"geometry_eta\": 3.0"))
         .unwrap();
     let err = Checkpoint::load(&folder).unwrap_err().to_string();
     assert!(err.contains("sampling.geometry_eta 3 is not in [0, 2]"), "{err}");
