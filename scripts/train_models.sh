@@ -62,8 +62,9 @@ train living 200000 0.25 --extra-data "$data/living-extra" --extra-data "$data/l
     --prediction v --schedule log_snr --min-snr 5 --min-snr-floor 1 --geometry-eta 2 --lr 1e-3
 # Dining: the v model of the bedrooms (docs/RESULTS.md, "The dining v model on both draws").
 # Its default sampler, DDIM's eta 2 on the geometry (docs/RESULTS.md, "Fresh noise on the dining
-# rooms' geometry", then "The dining model's geometry at η 2"), goes into its config.json. 29,686 rooms for 170,000 steps, most of the
-# 150 minutes the model issue allows (docs/RESULTS.md, "The dining model for 170,000 steps").
+# rooms' geometry", then "The dining model's geometry at η 2"), goes into its config.json.
+# 29,686 rooms for 170,000 steps, most of the 150 minutes the model issue allows
+# (docs/RESULTS.md, "The dining model for 170,000 steps").
 train dining 170000 0.25 --extra-data "$data/dining-extra" --extra-data "$data/dining-touch" \
     --anchored-yaw box --wall-features false \
     --prediction v --schedule log_snr --min-snr 5 --min-snr-floor 1 --geometry-eta 2
