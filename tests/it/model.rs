@@ -1090,9 +1090,10 @@ fn the_shipped_dining_model_samples_with_its_own_geometry_eta() {
     std::fs::create_dir_all(&folder).unwrap();
     let models = root().join("models/dining");
     std::fs::copy(models.join("model.safetensors"), folder.join("model.safetensors")).unwrap();
-    let config = std::fs::read_to_string(models.join("config.json")).unwrap();
-    std::fs::write(folder.join("config.json"), config.replace("\"geometry_eta\": 2.0", "\"geometry_eta\": 3.0"))
-        .unwrap();
+    let mut config: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(models.join("config.json")).unwrap()).unwrap();
+    config["sampling"]["geometry_eta"] = serde_json::json!(3.0);
+    std::fs::write(folder.join("config.json"), config.to_string()).unwrap();
     let err = Checkpoint::load(&folder).unwrap_err().to_string();
     assert!(err.contains("sampling.geometry_eta 3 is not in [0, 2]"), "{err}");
     let input = root().join("scenes/examples/dining_rect.json");
