@@ -6,11 +6,12 @@
 # row of `shade-sim eval` against the val split; prints a Markdown table (rooms failing `check`,
 # contact IoU, Col_mot, CKL, the rooms each step's absence costs, and how many rooms' layouts it
 # changes at all) and writes OUT_DIR/<room>.json.
-# Usage: [SEEDS="0 1 2"] bash scripts/repair_ablation.sh [DATA_DIR] [OUT_DIR] [LIMIT] [ROOMS…]
+# Usage: [SEEDS=0,1,2] bash scripts/repair_ablation.sh [DATA_DIR] [OUT_DIR] [LIMIT] [ROOMS…]
 #   LIMIT: only the first LIMIT val inputs of each room (0 = all, the default).
-#   SEEDS: the sampling seeds (default 0); with several, every folder is drawn and repaired once per
-#   seed and the table sums the rooms over the seeds (one seed's spread is about as large as what
-#   the smaller steps earn) and averages the metrics. OUT_DIR/<room>.seed<S>.json per seed.
+#   SEEDS: the sampling seeds, comma-separated as val_seeds.sh takes them (spaces also do; default
+#   0); with several, every folder is drawn and repaired once per seed and the table sums the
+#   rooms over the seeds (one seed's spread is about as large as what the smaller steps earn) and
+#   averages the metrics. OUT_DIR/<room>.seed<S>.json per seed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 data="${1:-data}"
@@ -21,7 +22,8 @@ rooms=("${@:4}")
 cargo build --release --quiet
 bin=./target/release/shade-sim
 steps=$($bin repair --print-config | python3 -c 'import json, sys; print(" ".join(json.load(sys.stdin)["steps"]))')
-seeds=(${SEEDS:-0})
+seed_list="${SEEDS:-0}"
+seeds=(${seed_list//,/ })
 for room in "${rooms[@]}"; do
     reports=()
     for seed in "${seeds[@]}"; do
