@@ -19,7 +19,9 @@
 //! what they do on it (a sofa whose sitter sits 30 cm from a wall becomes a stool): started where
 //! the piece stands and, where none of those ends clear, under its people and as tall as their
 //! seat (within the 15 cm of real heights that guidance and `eval` allow; a kids' bed under a child
-//! on a 30 cm seat becomes a low chair). A piece that holds nobody keeps its category. One
+//! on a 30 cm seat becomes a low chair), each start moved inside the floor plan first and ending
+//! no further out of it than the piece (a loveseat in a corner does not become a wider sofa
+//! through the wall). A piece that holds nobody keeps its category. One
 //! mechanism for every way a piece can meet a body; it knows nothing of what the piece or the body
 //! is.
 //!
@@ -27,7 +29,7 @@
 
 use super::completion::height_for_surface;
 use super::config::{RepairConfig, StepName};
-use super::helpers::worst_offence;
+use super::helpers::{inside_push, shift, worst_offence};
 use super::occupancy::Occupancy;
 use super::pipeline::{RepairStep, StepReport, Workspace};
 use crate::furniture::{REAL_SIZE_MARGIN, beyond_real, height_range, size_range};
@@ -111,9 +113,15 @@ impl<'a> Room<'a> {
         Room { polygon, gap, others: objects, outside, overlap }
     }
 
+    /// Whether `c` pokes out of the floor plan no further than piece `i` does.
+    fn keeps_inside(&self, c: &Object) -> bool {
+        worst_offence(&c.obox(), &self.polygon, self.gap).map_or(0.0, |w| w.0) <= self.outside + 1e-9
+    }
+
+    /// Whether `c` goes no further out of the floor plan or into another piece than piece `i`.
     fn allows(&self, i: usize, c: &Object) -> bool {
         let b = c.obox();
-        worst_offence(&b, &self.polygon, self.gap).map_or(0.0, |w| w.0) <= self.outside + 1e-9
+        self.keeps_inside(c)
             && self
                 .others
                 .iter()
@@ -155,12 +163,17 @@ impl Search<'_> {
     }
 
     /// The piece reshaped from `from` ([`changes`], the best change each round, while one helps)
-    /// and the depth it ends with; sizes no further outside the real ones than `from`'s.
+    /// and the depth it ends with (infinite where it ends further out of the floor plan than the
+    /// piece); sizes no further outside the real ones than `from`'s.
     fn run(&self, scene: &mut Scene, from: Object, depth: f64) -> (Object, f64) {
         let cfg = &self.config.fit_to_bodies;
         let others = scene.objects.clone();
         let room = Room::of(scene, &others, self.i, self.config.gap);
-        let mut best = (from.clone(), depth);
+        // A start further out of the floor plan than the piece (another category's shape that no
+        // push fits inside) is no answer: the first change the room allows beats it. A start's
+        // overlaps with other pieces are left to `overlaps`, as the piece's own are.
+        let start_depth = if room.keeps_inside(&from) { depth } else { f64::INFINITY };
+        let mut best = (from.clone(), start_depth);
         for _ in 0..cfg.rounds {
             if best.1 <= 0.0 || self.spent() {
                 break;
@@ -225,9 +238,11 @@ struct Held {
 /// leaves bones in it, tries it as each other category that affords what its people do
 /// (`held`; none when it holds nobody) — the few whose starting shape the bones enter least —
 /// reshaped the same way, and takes the one nearest its size that leaves no bone in it. The other
-/// categories start where the piece stands; where none of those ends clean, they start again
-/// under its people, as tall as their seat ([`under_people`]: a bed under a child on a 30 cm seat,
-/// whose stool must stand beneath the child and that low). Returns whether it changed.
+/// categories start where the piece stands, moved inside the floor plan where their shape pokes
+/// out of it, and end no further out of it than the piece was; where none of those ends clean,
+/// they start again under its people, as tall as their seat ([`under_people`]: a bed under a child
+/// on a 30 cm seat, whose stool must stand beneath the child and that low). Returns whether it
+/// changed.
 fn fit_piece(scene: &mut Scene, i: usize, held: &Held, physics: &dyn Physics, config: &RepairConfig) -> bool {
     let tolerance = PHYS_TOLERANCE - config.fit_to_bodies.margin;
     let given = scene.objects[i].clone();
@@ -243,12 +258,15 @@ fn fit_piece(scene: &mut Scene, i: usize, held: &Held, physics: &dyn Physics, co
             .filter(|&c| c != given.category && !c.is_hanging() && held.affords.iter().all(|&a| c.affords(a)))
             .collect();
         let size_change = |o: &Object| (0..3).map(|k| (o.size[k] - given.size[k]).abs()).sum::<f64>();
+        let polygon = scene.floor_plan.polygon();
         // From each start, the categories whose starting shape the bones enter least are searched.
         let mut search_from = |place: &dyn Fn(Object) -> Object| -> Option<Object> {
             let mut starts: Vec<(Object, f64)> = others
                 .iter()
                 .filter_map(|&category| {
-                    let from = place(as_category(&given, category));
+                    let mut from = place(as_category(&given, category));
+                    let push = inside_push(&from.obox(), &polygon, config.gap);
+                    shift(&mut from, push);
                     search.depth(scene, &from).map(|d| (from, d))
                 })
                 .collect();
@@ -328,6 +346,7 @@ mod tests {
     use super::*;
     use crate::data::generate_room;
     use crate::physics::PieceFit;
+    use crate::repair::helpers::fits_inside;
     use crate::scene::{Group, RoomType};
     use crate::sim::{SimPhysics, check_scene, exact_contacts};
     use glam::DVec2;
@@ -463,6 +482,56 @@ mod tests {
         }
         let fit = SimPhysics.piece_fit(&scene, 0, PHYS_TOLERANCE);
         assert_eq!(fit, PieceFit { depth: 0.0, unsupported });
+    }
+
+    /// Physics in which bones enter every piece but a multi-seat sofa, and nobody lacks support.
+    struct OnlyMultiSeatSofasFit;
+
+    impl Physics for OnlyMultiSeatSofasFit {
+        fn passes_check(&self, _: &Scene) -> bool {
+            false
+        }
+        fn exact_contacts(&self, _: &Scene, _: f64) -> Vec<EngineContact> {
+            Vec::new()
+        }
+        fn pushes(&self, _: &Scene, _: f64) -> Vec<(usize, DVec2)> {
+            Vec::new()
+        }
+        fn piece_fit(&self, scene: &Scene, object: usize, _: f64) -> PieceFit {
+            let depth = if scene.objects[object].category == Category::MultiSeatSofa { 0.0 } else { 0.1 };
+            PieceFit { depth, unsupported: Vec::new() }
+        }
+    }
+
+    /// A loveseat 15 cm narrower than any multi-seat sofa, 2 cm from the west and south walls of a
+    /// room `width` m wide and 4 m deep, holding one sitter; it and what `fit_piece` makes of it.
+    fn loveseat_in_a_corner(width: f64) -> (Object, Object, Polygon) {
+        let (mut scene, _) = sofa_with_sitter();
+        let narrowest_multi = size_range(Category::MultiSeatSofa, 0).0;
+        let (lo, _) = size_range(Category::LoveseatSofa, 0);
+        assert!(lo < narrowest_multi - 0.1, "{lo} {narrowest_multi}");
+        let w = (narrowest_multi - 0.15).max(lo);
+        let given = Object::standing("o0", Category::LoveseatSofa, [0.02 + w * 0.5, 0.42], [w, 0.8, 0.85]);
+        scene.floor_plan.polygon = vec![[0.0, 0.0], [width, 0.0], [width, 4.0], [0.0, 4.0]];
+        scene.objects = vec![given.clone()];
+        let held = Held { affords: vec![Action::Sit], under: DVec2::new(given.center[0], 0.6), surface: 0.45 };
+        fit_piece(&mut scene, 0, &held, &OnlyMultiSeatSofasFit, &RepairConfig::default());
+        (given, scene.objects[0].clone(), scene.floor_plan.polygon())
+    }
+
+    #[test]
+    fn another_category_starts_inside_the_floor_plan_and_never_ends_through_a_wall() {
+        let gap = RepairConfig::default().gap;
+        // Room to spare east of the loveseat: the multi-seat sofa, 7.5 cm wider on each side,
+        // starts pushed off the west wall and ends inside.
+        let (_, o, polygon) = loveseat_in_a_corner(4.0);
+        assert_eq!(o.category, Category::MultiSeatSofa);
+        assert!(fits_inside(&o.obox(), &polygon, gap), "{o:?}");
+        // A room 3 cm narrower than the narrowest multi-seat sofa (the loveseat 10 cm off its east
+        // wall): none fits, so none is drawn through a wall; the loveseat stays as it was.
+        let (given, o, _) = loveseat_in_a_corner(size_range(Category::MultiSeatSofa, 0).0 - 0.03);
+        assert!(given.center[0] + given.size[0] * 0.5 < size_range(Category::MultiSeatSofa, 0).0 - 0.03 - gap);
+        assert_eq!(o, given);
     }
 
     /// A room from y = `south` to 3 m, 4 m wide, a person standing at (2, 1.5) and a real-sized
