@@ -10,9 +10,13 @@
 //! centre line against the bed's half width (0.99 in the data; `examples/pair_gaps.rs` measures
 //! the same on layouts). In every room type, the centre error of the hanging lamps that hang
 //! within 2 cm of the floor's centre (the token origin), which a denoiser that knew the data's
-//! most common lamp place would pull home. Read beside the sampled layouts' errors, it says
-//! whether a model's imprecision is its own (a large one-step error near t = 0) or the sampling
-//! chain's (a small one, with layouts still off).
+//! most common lamp place would pull home. For the free pieces, two rules of the data that no
+//! other piece's noise blurs, each beside the noisy input's own error: the yaw (every piece
+//! stands square to the walls) and, for a piece whose centre is within 60 cm of its nearest
+//! wall, its distance from that wall (a wall piece's back stands 5 cm off it) — the floor plan is
+//! given exactly, so a denoiser that reads where its walls are puts such a piece back. Read
+//! beside the sampled layouts' errors, it says whether a model's imprecision is its own (a large
+//! one-step error near t = 0) or the sampling chain's (a small one, with layouts still off).
 //!
 //! ```sh
 //! cargo run --release --example denoising_error -- models/bedroom data/bedroom [val] [scenes]
@@ -22,6 +26,7 @@ use shade_sim::data::Rng;
 use shade_sim::eval::pearson;
 use shade_sim::generator::tokens::slot_class;
 use shade_sim::generator::{Checkpoint, FastDenoiser, HostBatch, Schedule, anchors, load_split};
+use shade_sim::geom::wrap_angle;
 use shade_sim::scene::Category;
 use std::path::PathBuf;
 
@@ -49,6 +54,28 @@ fn beside(nightstand: Placed, bed: Placed) -> (f64, f64) {
     let (dx, dy) = (nightstand.x - bed.x, nightstand.y - bed.y);
     let u = (bed.yaw.cos() * dx + bed.yaw.sin() * dy).abs();
     (u - bed.width / 2.0 - nightstand.width / 2.0, u)
+}
+
+/// A slot's yaw (rad) from its cos and sin.
+fn yaw_of(v: &[f32]) -> f64 {
+    f64::from(v[7]).atan2(f64::from(v[6]))
+}
+
+/// The floor-plan boundary point nearest slot `v`'s centre, with its outward normal (token units;
+/// the interior points, whose normal is zero, left out): the wall that slot stands nearest.
+fn nearest_wall(floor: &[f32], v: &[f32]) -> [f64; 4] {
+    let far = |q: &[f32]| f64::from(q[0] - v[0]).hypot(f64::from(q[1] - v[1]));
+    let q = floor
+        .chunks_exact(4)
+        .filter(|q| q[2] != 0.0 || q[3] != 0.0)
+        .min_by(|a, b| far(a).total_cmp(&far(b)))
+        .expect("a floor plan has boundary points");
+    q.iter().map(|&x| f64::from(x)).collect::<Vec<_>>().try_into().expect("four features")
+}
+
+/// How far inside `wall`'s line slot `v`'s centre is (token units).
+fn wall_distance(wall: [f64; 4], v: &[f32]) -> f64 {
+    -((f64::from(v[0]) - wall[0]) * wall[2] + (f64::from(v[1]) - wall[1]) * wall[3])
 }
 
 fn main() -> std::process::ExitCode {
@@ -99,9 +126,9 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         Placed { x: c[0], y: c[1], width: s[0], yaw: f64::from(v[7]).atan2(f64::from(v[6])) }
     };
     println!(
-        "| t | σ (cm) | centre, anchored: median / p90 (cm) | centre, free | size, free | class right | empty right | nightstand gap error: median (cm), r | lamps at the centre |"
+        "| t | σ (cm) | centre, anchored: median / p90 (cm) | centre, free | size, free | class right | empty right | nightstand gap error: median (cm), r | lamps at the centre | yaw, free: estimate / input (deg, median) | wall distance, free within 60 cm: estimate / input (cm, median) |"
     );
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for t in STEPS.into_iter().filter(|&t| t < schedule.steps()) {
         let ab = schedule.alpha_bars[t];
         let mut rng = Rng::new(7 + t as u64);
@@ -118,7 +145,16 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         let (mut anchored, mut free, mut sizes, mut centred) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         let (mut class_right, mut pieces, mut empty_right, mut slots) = (0usize, 0usize, 0usize, 0usize);
         let (mut gap_errors, mut from_centre, mut half_width) = (Vec::new(), Vec::new(), Vec::new());
-        for (item, (want, got)) in truth.chunks_exact(per_item).zip(estimate.chunks_exact(per_item)).enumerate() {
+        let (mut yaw_est, mut yaw_in) = (Vec::new(), Vec::new());
+        let (mut wall_est, mut wall_in) = (Vec::new(), Vec::new());
+        let mut noisy_world = noisy.clone();
+        world(&mut noisy_world);
+        for (item, ((want, got), inp)) in truth
+            .chunks_exact(per_item)
+            .zip(estimate.chunks_exact(per_item))
+            .zip(noisy_world.chunks_exact(per_item))
+            .enumerate()
+        {
             // Each nightstand against the room's own nearest bed, both as the model estimates them.
             let class_in = |slot: usize| slot_class(&want[slot * dim..(slot + 1) * dim], cfg);
             let truth_at = |s: usize| placed(&want[s * dim..(s + 1) * dim]);
@@ -155,6 +191,15 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
                     anchored.push(error);
                 } else {
                     free.push(error);
+                    let input = &inp[slot * dim..(slot + 1) * dim];
+                    yaw_est.push(wrap_angle(yaw_of(g) - yaw_of(w)).abs().to_degrees());
+                    yaw_in.push(wrap_angle(yaw_of(input) - yaw_of(w)).abs().to_degrees());
+                    let wall = nearest_wall(&examples[item].features.floor, w);
+                    let from_wall = |v: &[f32]| unit * wall_distance(wall, v);
+                    if from_wall(w) < 0.6 {
+                        wall_est.push(100.0 * (from_wall(g) - from_wall(w)).abs());
+                        wall_in.push(100.0 * (from_wall(input) - from_wall(w)).abs());
+                    }
                     let (a, b) = (size(w), size(g));
                     sizes.push(100.0 * (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0, f64::max));
                 }
@@ -166,7 +211,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             false => format!("{:.1}, {:.2}", percentile(&mut gap_errors, 0.5), pearson(&from_centre, &half_width)),
         };
         println!(
-            "| {t} | {:.1} | {} | {} | {} | {:.3} | {:.3} | {relation} | {} |",
+            "| {t} | {:.1} | {} | {} | {} | {:.3} | {:.3} | {relation} | {} | {:.2} / {:.2} | {:.1} / {:.1} ({}) |",
             100.0 * unit * (1.0 - ab).sqrt() / ab.sqrt(),
             pair(&mut anchored),
             pair(&mut free),
@@ -174,6 +219,11 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             class_right as f64 / pieces.max(1) as f64,
             empty_right as f64 / slots.max(1) as f64,
             pair(&mut centred),
+            percentile(&mut yaw_est, 0.5),
+            percentile(&mut yaw_in, 0.5),
+            percentile(&mut wall_est, 0.5),
+            percentile(&mut wall_in, 0.5),
+            wall_in.len(),
         );
     }
     Ok(())
