@@ -65,7 +65,8 @@ fn yaw_of(v: &[f32]) -> f64 {
 }
 
 /// The floor-plan boundary point nearest slot `v`'s centre, with its outward normal (token units;
-/// the interior points, whose normal is zero, left out): the wall that slot stands nearest.
+/// `floor` holds x, y and the normal's x, y per point; the interior points, whose normal is zero,
+/// left out): the wall that slot stands nearest.
 fn nearest_wall(floor: &[f32], v: &[f32]) -> [f64; 4] {
     let far = |q: &[f32]| f64::from(q[0] - v[0]).hypot(f64::from(q[1] - v[1]));
     let q = floor
@@ -126,7 +127,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     let nightstand = class_of(Category::Nightstand);
     let placed = |v: &[f32]| {
         let (c, s) = (metres(v), size(v));
-        Placed { x: c[0], y: c[1], width: s[0], yaw: f64::from(v[7]).atan2(f64::from(v[6])) }
+        Placed { x: c[0], y: c[1], width: s[0], yaw: yaw_of(v) }
     };
     println!(
         "| t | σ (cm) | centre, anchored: median / p90 (cm) | centre, free | size, free | class right | empty right | nightstand gap error: median (cm), r | lamps at the centre | yaw, free: estimate / input (deg, median) | wall distance, free with the back 5 cm off a wall: estimate / input (cm, median) |"
