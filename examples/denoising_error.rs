@@ -74,7 +74,7 @@ fn nearest_wall(floor: &[f32], v: &[f32]) -> [f64; 4] {
         .filter(|q| q[2] != 0.0 || q[3] != 0.0)
         .min_by(|a, b| far(a).total_cmp(&far(b)))
         .expect("a floor plan has boundary points");
-    q.iter().map(|&x| f64::from(x)).collect::<Vec<_>>().try_into().expect("four features")
+    std::array::from_fn(|k| f64::from(q[k]))
 }
 
 /// How far inside `wall`'s line slot `v`'s centre is (token units).
