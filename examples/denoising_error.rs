@@ -17,7 +17,8 @@
 //! exactly, so a denoiser that reads where its walls are puts such a piece back. And the centre
 //! error of the dining tables, beside the noisy input's: the data stands every dining chair 4 cm
 //! off its table and the chairs are anchored to their sitters, so a denoiser that read its
-//! chairs would put their table back; it is a free piece, as imprecise as any other. Read
+//! chairs would put their table back (with table slots, `train --table-slots`, the table is in
+//! its diners' knee slots, each copy counted). Read
 //! beside the sampled layouts' errors, it says whether a model's imprecision is its own (a large
 //! one-step error near t = 0) or the sampling chain's (a small one, with layouts still off).
 //!
@@ -205,6 +206,11 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
                 if categories.get(wc).is_some_and(|c| c.is_hanging()) && a[0].hypot(a[1]) < 0.02 {
                     centred.push(error);
                 }
+                if Some(wc) == dining_table {
+                    let c = metres(&inp[slot * dim..(slot + 1) * dim]);
+                    table_est.push(error);
+                    table_in.push(100.0 * ((a[0] - c[0]).powi(2) + (a[1] - c[1]).powi(2)).sqrt());
+                }
                 if slot < boxes {
                     anchored.push(error);
                 } else {
@@ -212,11 +218,6 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
                     let input = &inp[slot * dim..(slot + 1) * dim];
                     yaw_est.push(wrap_angle(yaw_of(g) - yaw_of(w)).abs().to_degrees());
                     yaw_in.push(wrap_angle(yaw_of(input) - yaw_of(w)).abs().to_degrees());
-                    if Some(wc) == dining_table {
-                        let c = metres(input);
-                        table_est.push(error);
-                        table_in.push(100.0 * ((a[0] - c[0]).powi(2) + (a[1] - c[1]).powi(2)).sqrt());
-                    }
                     let wall = nearest_wall(&examples[item].features.floor, w);
                     let from_wall = |v: &[f32]| unit * wall_distance(wall, v);
                     let depth = size(w)[1];

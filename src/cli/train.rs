@@ -73,6 +73,11 @@ pub struct TrainArgs {
     /// preset's, true).
     #[arg(long)]
     pub wall_features: Option<bool>,
+    /// Whether each sitter's knees also anchor a slot, for the table over them: true or false
+    /// (default false). True also reads twice the preset's contact boxes (at most the room's
+    /// slots), since every sit box brings a knee box.
+    #[arg(long)]
+    pub table_slots: Option<bool>,
     /// Fourier features of the noisy tokens in this many octaves, the finest 1/2^N of a token
     /// unit (docs/RESULTS.md, "Fourier features"; default: the preset's, 0 = none).
     #[arg(long)]
@@ -228,6 +233,12 @@ fn model_config(args: &TrainArgs, room: shade_sim::scene::RoomType) -> anyhow::R
     if let Some(wall_features) = args.wall_features {
         model.wall_features = wall_features;
     }
+    if let Some(table_slots) = args.table_slots {
+        model.table_slots = table_slots;
+        if table_slots {
+            model.max_contacts = (2 * model.max_contacts).min(model.slots());
+        }
+    }
     if let Some(slot_roles) = args.slot_roles {
         model.slot_roles = slot_roles;
     }
@@ -312,6 +323,7 @@ fn architecture_flag(args: &TrainArgs) -> Option<&'static str> {
         ("--schedule", args.schedule.is_some()),
         ("--anchored-yaw", args.anchored_yaw.is_some()),
         ("--wall-features", args.wall_features.is_some()),
+        ("--table-slots", args.table_slots.is_some()),
         ("--slot-roles", args.slot_roles.is_some()),
         ("--world-features", args.world_features.is_some()),
         ("--fourier-bands", args.fourier_bands.is_some()),

@@ -15,6 +15,18 @@
 
 use super::ModelConfig;
 use super::config::{AnchoredYaw, CONTACT_FEATURES};
+use crate::geom::OBox;
+use crate::human::Conditions;
+use crate::scene::Action;
+
+/// The boxes that anchor a scene's slots, in slot order, each with its action: the contact boxes,
+/// then, for a model with [`ModelConfig::table_slots`], the knee boxes (no action). The model
+/// reads the first `max_contacts` of them.
+pub fn anchor_boxes(cond: &Conditions, cfg: &ModelConfig) -> Vec<(OBox, Option<Action>)> {
+    let contacts = cond.contact_boxes.iter().map(|b| (b.obox, Some(b.action)));
+    let knees = cond.knee_boxes.iter().filter(|_| cfg.table_slots).map(|&b| (b, None));
+    contacts.chain(knees).collect()
+}
 
 /// One anchored slot's box: centre (token units, relative to the window centre) and yaw.
 #[derive(Debug, Clone, Copy)]

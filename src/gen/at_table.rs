@@ -13,7 +13,7 @@
 
 use super::guidance::{GuidedObject, ObjectGradient, distance_outside, excess_outside};
 use crate::human::ContactBox;
-use crate::scene::{Action, Category, Scene};
+use crate::scene::{Category, Scene};
 use glam::DVec2;
 
 /// The table a seat of `category` stands at in the data, if it always stands at one: a dining
@@ -26,16 +26,9 @@ pub fn table_of_seat(category: Category) -> Option<Category> {
     }
 }
 
-/// Where the sitter of a sit box has their knees (x, y; the two knees' midpoint in the middle
-/// frame of the box's span); `None` for another action or a skeleton without knees.
+/// Where the sitter of a sit box has their knees on the floor plan ([`crate::human::knees_of`]).
 pub fn knees_of(scene: &Scene, b: &ContactBox) -> Option<DVec2> {
-    if b.action != Action::Sit {
-        return None;
-    }
-    let human = scene.humans.iter().find(|h| h.id == b.human)?;
-    let (left, right) = (human.skeleton.joint("left_knee")?, human.skeleton.joint("right_knee")?);
-    let frame = ((b.frames[0] + b.frames[1]) / 2).min(human.frames.len().checked_sub(1)?);
-    Some(((human.joint_at(frame, left) + human.joint_at(frame, right)) * 0.5).truncate())
+    crate::human::knees_of(scene, b).map(|k| k.truncate())
 }
 
 /// J_t: Σ over pieces that seat someone at a table ([`table_of_seat`]) and over the knees of the

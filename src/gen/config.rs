@@ -69,6 +69,14 @@ pub struct ModelConfig {
     /// Off in older configs.
     #[serde(default)]
     pub wall_features: bool,
+    /// Whether each sitter's knee box ([`crate::human::knee_box`]) also anchors a slot, after the
+    /// contact boxes' slots: the slot holds the piece whose top reaches over the sitter's knees (a
+    /// diner's table, a desk; one table in each of its diners' slots, as a sofa is in its
+    /// sitters'), or nothing. The model then places a table in its diners' frame, as it places a
+    /// seat in its sitter's ([`super::anchors`]). The knee boxes join the contact features with no
+    /// action set. Off in older configs.
+    #[serde(default)]
+    pub table_slots: bool,
     /// Fourier features of the noisy tokens ([`super::fourier`]): every object token also gets an
     /// embedding of sin and cos of 2ᵏπ x, k = 1 … this, of each continuous attribute x. 0 (older
     /// configs): none.
@@ -258,6 +266,7 @@ impl ModelConfig {
             relation_bias: false,
             relation_values: false,
             wall_features: true,
+            table_slots: false,
             fourier_bands: 0,
             noise_scaled_features: false,
             gap_bounds: None,

@@ -37,7 +37,7 @@ impl Example {
     /// Encodes `scene` for `cfg` with `bounds`.
     pub fn of(scene: &Scene, bounds: &Bounds, cfg: &ModelConfig) -> Example {
         let cond = Conditions::of(scene);
-        let boxes: Vec<OBox> = cond.contact_boxes.iter().map(|b| b.obox).collect();
+        let boxes: Vec<OBox> = anchors::anchor_boxes(&cond, cfg).into_iter().map(|(b, _)| b).collect();
         let (tokens, weights) = tokens::encode(scene, cond.window.center, &boxes, bounds, cfg);
         let mut counts = vec![0u8; cfg.classes() - 1];
         for t in tokens.chunks_exact(cfg.token_dim()) {

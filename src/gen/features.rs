@@ -12,7 +12,8 @@ use crate::scene::{Action, RoomType};
 /// The conditioning features of one scene.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Features {
-    /// `max_contacts × 11`: centre, size, cos, sin, one-hot (sit, lie, touch); zeros when padded.
+    /// `max_contacts × 11`: centre, size, cos, sin, one-hot (sit, lie, touch; none for a knee
+    /// box, [`super::anchors::anchor_boxes`]); zeros when padded.
     pub contacts: Vec<f32>,
     /// `max_contacts`: 1 for a real box.
     pub contact_mask: Vec<f32>,
@@ -41,12 +42,12 @@ impl Features {
         };
         let mut contacts = vec![0f32; cfg.max_contacts * CONTACT_FEATURES];
         let mut contact_mask = vec![0f32; cfg.max_contacts];
-        for (i, b) in cond.contact_boxes.iter().take(cfg.max_contacts).enumerate() {
-            let rel = [b.obox.center.x - center.x, b.obox.center.y - center.y, b.obox.center.z];
+        for (i, (b, action)) in super::anchors::anchor_boxes(cond, cfg).into_iter().take(cfg.max_contacts).enumerate() {
+            let rel = [b.center.x - center.x, b.center.y - center.y, b.center.z];
             let c = bounds.scale_center(rel);
-            let s = bounds.scale_size(b.obox.size.to_array());
-            let kind = [Action::Sit, Action::Lie, Action::Touch].map(|a| if a == b.action { 1.0 } else { 0.0 });
-            let values = [c[0], c[1], c[2], s[0], s[1], s[2], b.obox.yaw.cos(), b.obox.yaw.sin()];
+            let s = bounds.scale_size(b.size.to_array());
+            let kind = [Action::Sit, Action::Lie, Action::Touch].map(|a| if Some(a) == action { 1.0 } else { 0.0 });
+            let values = [c[0], c[1], c[2], s[0], s[1], s[2], b.yaw.cos(), b.yaw.sin()];
             let row = &mut contacts[i * CONTACT_FEATURES..(i + 1) * CONTACT_FEATURES];
             for (dst, v) in row.iter_mut().zip(values.into_iter().chain(kind)) {
                 *dst = v as f32;

@@ -5,7 +5,7 @@ use super::count_prior::contact_kinds;
 use super::count_projection::{CountRule, CountTargets};
 use super::dataset::HostBatch;
 use super::sampler::{Chain, Denoisers, Guidance, Projection, empty_projection_steps, sample_from};
-use super::{Checkpoint, Features, FloorSize, GenError, Schedule, UnseenFloor, tokens};
+use super::{Checkpoint, Features, FloorSize, GenError, Schedule, UnseenFloor, anchors, tokens};
 use crate::data::Rng;
 use crate::human::{Conditions, ContactBox};
 use crate::scene::{RoomFrame, Scene};
@@ -272,7 +272,7 @@ impl Generator {
                 seeds.push(item_seed);
                 if self.from_input {
                     let (input, cond) = (inputs[i], &features[i].0);
-                    let boxes: Vec<_> = cond.contact_boxes.iter().map(|b| b.obox).collect();
+                    let boxes: Vec<_> = anchors::anchor_boxes(cond, model).into_iter().map(|(b, _)| b).collect();
                     start.extend(tokens::encode(input, cond.window.center, &boxes, &meta.bounds, model).0);
                 }
             }

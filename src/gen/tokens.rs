@@ -212,7 +212,7 @@ mod tests {
     use super::*;
     use crate::data::{SplitStats, generate_room};
     use crate::geom::RoomWindow;
-    use crate::scene::RoomType;
+    use crate::scene::{Action, Category, RoomType};
 
     fn bounds_of(scenes: &[Scene]) -> Bounds {
         let mut stats = SplitStats::default();
@@ -311,6 +311,38 @@ mod tests {
             }
         }
         assert!(shared > 0, "some sofa serves two sitters in 40 living rooms");
+    }
+
+    #[test]
+    fn a_diners_knee_slot_holds_their_table_and_no_sitters_slot_holds_their_seat() {
+        let room = RoomType::Dining;
+        let scenes: Vec<Scene> = (0..30).map(|i| generate_room(room, 3, i, false).scene).collect();
+        let bounds = bounds_of(&scenes);
+        let cfg = ModelConfig { table_slots: true, max_contacts: room.max_objects(), ..ModelConfig::tiny(room) };
+        let dim = cfg.token_dim();
+        let (mut diners, mut empty) = (0, 0);
+        for scene in &scenes {
+            let cond = crate::human::Conditions::of(scene);
+            let anchors = super::super::anchors::anchor_boxes(&cond, &cfg);
+            let sits: Vec<usize> =
+                (0..cond.contact_boxes.len()).filter(|&k| anchors[k].1 == Some(Action::Sit)).collect();
+            // One knee box per sit box, after the contact boxes, with no action.
+            assert_eq!(anchors.len(), cond.contact_boxes.len() + sits.len());
+            assert!(anchors[cond.contact_boxes.len()..].iter().all(|(_, action)| action.is_none()));
+            let boxes: Vec<OBox> = anchors.iter().map(|(b, _)| *b).collect();
+            let (tokens, _) = encode(scene, cond.window.center, &boxes, &bounds, &cfg);
+            let piece = |k: usize| decode(&tokens[k * dim..(k + 1) * dim], cond.window.center, 2.6, &bounds, &cfg);
+            for (n, &k) in sits.iter().enumerate() {
+                let (seat, at_knees) = (piece(k), piece(cond.contact_boxes.len() + n));
+                if seat.first().is_some_and(|o| o.category == Category::DiningChair) {
+                    diners += 1;
+                    assert_eq!(at_knees.iter().map(|o| o.category).collect::<Vec<_>>(), [Category::DiningTable]);
+                }
+                empty += at_knees.is_empty() as usize;
+                assert!(at_knees.iter().all(|o| seat.iter().all(|s| !is_copy(o, s))), "a seat at its sitter's knees");
+            }
+        }
+        assert!(diners > 20 && empty > 0, "{diners} diners, {empty} sitters with nothing at their knees");
     }
 
     #[test]

@@ -14,6 +14,10 @@
 //!   the angle of the arm.
 //! - Floor plan: points on the boundary with outward normals, then interior grid points, relative
 //!   to the window centre, in a fixed count for a PointNet.
+//! - Knee boxes: for every sit box, a [`KNEE_BOX_SIDE`] cube standing on the sitter's knees (the
+//!   two knees' midpoint in the middle frame of the span), where a table a person sits at reaches
+//!   over them. Not a contact: no piece must hold it, `check` and the metrics never read it; models
+//!   with table slots anchor a slot to each (`ModelConfig::table_slots`).
 //!
 //! Works on any skeleton that has the required joint names; it does not look at objects.
 
@@ -38,6 +42,10 @@ pub const SAME_SUPPORT_IOU: f64 = 0.5;
 const HAND_PER_FOREARM: f64 = 0.37;
 /// Frames looked at per span (evenly spread): enough for slow motions, cheap for long ones.
 const FRAMES_PER_SPAN: usize = 32;
+/// Side of the cube on a sitter's knees (m): the data's diners have their knees 3 cm under their
+/// table's edge and 7 cm past their seat's front, so a 10 cm cube there meets the table and not
+/// the seat.
+pub const KNEE_BOX_SIDE: f64 = 0.10;
 
 /// A region that must be supported or touched by furniture.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -75,6 +83,8 @@ pub struct Conditions {
     pub contact_boxes: Vec<ContactBox>,
     /// Floor-plan points (boundary first).
     pub floor_points: Vec<FloorPoint>,
+    /// A box on each sitter's knees, in the order of their sit boxes ([`knee_box`]).
+    pub knee_boxes: Vec<OBox>,
 }
 
 impl Conditions {
@@ -86,11 +96,13 @@ impl Conditions {
         let polygon = scene.floor_plan.polygon();
         let window = scene.room_window();
         let (nb, ni) = Self::FLOOR_POINTS;
+        let contact_boxes: Vec<ContactBox> = scene.humans.iter().flat_map(contact_boxes).collect();
         Conditions {
             window,
             free_space: free_space_mask(scene, &window),
             floor: Mask::of_polygon(&window, &polygon),
-            contact_boxes: scene.humans.iter().flat_map(contact_boxes).collect(),
+            knee_boxes: contact_boxes.iter().filter_map(|b| knee_box(scene, b)).collect(),
+            contact_boxes,
             floor_points: floor_points(&polygon, &window, nb, ni),
         }
     }
@@ -101,6 +113,26 @@ impl Conditions {
     pub fn contact_boxes_of(scene: &Scene) -> Vec<ContactBox> {
         scene.humans.iter().flat_map(contact_boxes).collect()
     }
+}
+
+/// Where the sitter of a sit box has their knees: the two knees' midpoint in the middle frame of
+/// the box's span; `None` for another action or a skeleton without knees.
+pub fn knees_of(scene: &Scene, b: &ContactBox) -> Option<DVec3> {
+    if b.action != Action::Sit {
+        return None;
+    }
+    let human = scene.humans.iter().find(|h| h.id == b.human)?;
+    let (left, right) = (human.skeleton.joint("left_knee")?, human.skeleton.joint("right_knee")?);
+    let frame = ((b.frames[0] + b.frames[1]) / 2).min(human.frames.len().checked_sub(1)?);
+    Some((human.joint_at(frame, left) + human.joint_at(frame, right)) * 0.5)
+}
+
+/// The knee box of a sit box: a [`KNEE_BOX_SIDE`] cube standing on the sitter's knees, yawed as
+/// the sit box; `None` where [`knees_of`] has no knees.
+pub fn knee_box(scene: &Scene, b: &ContactBox) -> Option<OBox> {
+    let knees = knees_of(scene, b)?;
+    let centre = knees + DVec3::Z * (KNEE_BOX_SIDE / 2.0);
+    Some(OBox::new(centre, DVec3::splat(KNEE_BOX_SIDE), b.obox.yaw))
 }
 
 /// The feet of all walking and standing frames of all humans, and the whole body of one resting

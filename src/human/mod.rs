@@ -14,8 +14,8 @@ mod skeleton;
 mod surface;
 
 pub use conditions::{
-    Conditions, ContactBox, FLOOR_REST, FloorPoint, SUPPORT_DEPTH, TOUCH_SIDE, body_yaw, contact_boxes, floor_points,
-    free_space_mask, palm_of,
+    Conditions, ContactBox, FLOOR_REST, FloorPoint, KNEE_BOX_SIDE, SUPPORT_DEPTH, TOUCH_SIDE, body_yaw, contact_boxes,
+    floor_points, free_space_mask, knee_box, knees_of, palm_of,
 };
 pub use gait::Gait;
 pub use meetings::{Meeting, inside_each_other_at_once, meets_anyone, people_meeting};
