@@ -6,7 +6,9 @@
 //! bed's width (Pearson's r: 0.99 in the data, which keeps it exactly). Then the diners: each
 //! person seated on a dining chair, and how far their knees are from the nearest dining table's
 //! footprint (0 when its top reaches over them, as it does for every diner of the data), with the
-//! share within 10 cm.
+//! share within 10 cm, and the signed distance (negative: over the table's top) the "within" is
+//! measured from. The chairs are counted twice more: those seating someone (a sit box's centre on
+//! their footprint) and the spare ones.
 //!
 //! Run: `cargo run --release --example pair_gaps -- DIR…` (a dataset's split, or `generate`'s
 //! output for it).
@@ -38,7 +40,7 @@ fn percentiles(mut v: Vec<f64>) -> String {
 
 fn main() -> anyhow::Result<()> {
     let (mut side, mut back, mut from_centre, mut half_width, mut chairs) = (vec![], vec![], vec![], vec![], vec![]);
-    let mut knees_to_table = vec![];
+    let (mut seated_chairs, mut spare_chairs, mut knees_to_table) = (vec![], vec![], vec![]);
     for dir in std::env::args().skip(1) {
         for file in Scene::files_in(std::path::Path::new(&dir))? {
             let scene = Scene::load(&file)?;
@@ -47,6 +49,8 @@ fn main() -> anyhow::Result<()> {
             };
             let beds = of(|c| matches!(c, Category::DoubleBed | Category::SingleBed | Category::KidsBed));
             let tables = of(|c| c == Category::DiningTable);
+            let sit_boxes: Vec<_> =
+                Conditions::contact_boxes_of(&scene).into_iter().filter(|b| b.action == Action::Sit).collect();
             for o in &scene.objects {
                 if o.category == Category::Nightstand
                     && let Some(bed) = nearest(o, &beds)
@@ -62,16 +66,18 @@ fn main() -> anyhow::Result<()> {
                 {
                     let (u, v) = in_frame(o, table);
                     let edge = (u.abs() - table.size[0] / 2.0).max(v.abs() - table.size[1] / 2.0);
-                    chairs.push(edge - o.size[1] / 2.0);
+                    let gap = edge - o.size[1] / 2.0;
+                    chairs.push(gap);
+                    let seated = sit_boxes.iter().any(|b| o.obox().footprint_contains(b.obox.center.truncate()));
+                    if seated { &mut seated_chairs } else { &mut spare_chairs }.push(gap);
                 }
             }
-            for b in Conditions::contact_boxes_of(&scene).iter().filter(|b| b.action == Action::Sit) {
+            for b in &sit_boxes {
                 let seat = scene.objects.iter().find(|o| o.obox().footprint_contains(b.obox.center.truncate()));
                 if let (Some(seat), Some(knees)) = (seat, knees_of(&scene, b))
                     && seat.category == Category::DiningChair
                 {
-                    let gap =
-                        tables.iter().map(|t| t.obox().footprint_signed_distance(knees).max(0.0)).reduce(f64::min);
+                    let gap = tables.iter().map(|t| t.obox().footprint_signed_distance(knees)).reduce(f64::min);
                     knees_to_table.push(gap.unwrap_or(f64::INFINITY));
                 }
             }
@@ -85,12 +91,14 @@ fn main() -> anyhow::Result<()> {
     }
     if !chairs.is_empty() {
         println!("dining chairs ({}): from the table {}", chairs.len(), percentiles(chairs));
+        println!("  seating someone ({}) {}", seated_chairs.len(), percentiles(seated_chairs));
+        println!("  spare ({}) {}", spare_chairs.len(), percentiles(spare_chairs));
     }
     if !knees_to_table.is_empty() {
         let near = knees_to_table.iter().filter(|&&d| d <= 0.1).count();
         let share = 100.0 * near as f64 / knees_to_table.len() as f64;
         println!("diners ({}): knees within 10 cm of a table's top {near} ({share:.1} %)", knees_to_table.len());
-        println!("  knees from the nearest table {}", percentiles(knees_to_table));
+        println!("  knees from the nearest table, negative over its top {}", percentiles(knees_to_table));
     }
     Ok(())
 }
