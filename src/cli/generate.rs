@@ -54,6 +54,11 @@ pub struct GenerateArgs {
     /// of moving it to the nearest count the data has (for comparisons, docs/RESULTS.md).
     #[arg(long)]
     pub unseen_counts: bool,
+    /// Keep the class the model gives a person's piece even where it does not afford what they
+    /// do (a dining table under a diner) instead of the affording piece it scores highest (for
+    /// comparisons, docs/RESULTS.md).
+    #[arg(long)]
+    pub unafforded_pieces: bool,
     /// Sample with this many model calls instead of the model's T (its chain respaced to N evenly
     /// spaced steps; faster, and a v model keeps its precision; default: T).
     #[arg(long)]
@@ -196,6 +201,7 @@ pub fn run(args: &GenerateArgs, global: &GlobalArgs) -> anyhow::Result<ExitStatu
             let generator = load_model(custom.as_ref(), *room, &files[members[0]])?;
             let generator = if args.no_empty_projection { generator.without_empty_projection() } else { generator };
             let generator = if args.unseen_counts { generator.without_seen_counts() } else { generator };
+            let generator = if args.unafforded_pieces { generator.without_affordances() } else { generator };
             anyhow::ensure!(
                 !args.input_counts || generator.checkpoint.meta.model.count_condition,
                 "--input-counts: the {room} model has no count conditioning (train one with --count-condition)"

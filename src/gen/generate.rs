@@ -29,6 +29,9 @@ pub struct Generator {
     /// The steps the sampler visits ([`Schedule::respaced`]; all T by default) and its η (1).
     chain: Chain,
     empty_projection: bool,
+    /// Whether the projection keeps each person's slot to a piece that affords what they do
+    /// ([`super::affordance_projection`]).
+    affordances: bool,
     input_counts: bool,
     seen_counts: bool,
     /// Whether the chain starts from each input's own pieces ([`Generator::refining`]).
@@ -51,6 +54,7 @@ impl Generator {
             schedule,
             chain,
             empty_projection: true,
+            affordances: true,
             input_counts: false,
             seen_counts: true,
             from_input: false,
@@ -138,6 +142,13 @@ impl Generator {
     /// objects than the data ([`empty_projection_steps`]).
     pub fn without_empty_projection(self) -> Generator {
         Generator { empty_projection: false, ..self }
+    }
+
+    /// The same generator keeping the class the model gives a person's slot even where that piece
+    /// does not afford what they do (a dining table under a diner), instead of the affording
+    /// piece the slot scores highest ([`super::affordance_projection`]).
+    pub fn without_affordances(self) -> Generator {
+        Generator { affordances: false, ..self }
     }
 
     /// The same generator without the projection onto the counts the training data has (for a
@@ -283,6 +294,7 @@ impl Generator {
                 true => Projection {
                     steps: empty_projection_steps(&self.schedule),
                     counts: per_item.map(|per_item| CountTargets { per_item, bounds: meta.bounds.clone() }),
+                    affordances: self.affordances,
                 },
             };
             let scenes: Vec<&Scene> = chunk.iter().map(|&(i, _)| inputs[i]).collect();

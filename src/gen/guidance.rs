@@ -140,6 +140,8 @@ pub struct Footprint {
     pub corners: [DVec2; 4],
     /// A sitter's knees (J_t; [`super::at_table::knees_of`]); `None` for other boxes.
     pub knees: Option<DVec2>,
+    /// What the person does there.
+    pub action: Action,
 }
 
 impl Footprint {
@@ -152,7 +154,8 @@ impl Footprint {
             _ => b.obox.z_range().1,
         };
         let support = Some(SupportNeed { at: b.obox.center.truncate(), height });
-        Footprint { mask, area, support, center: b.obox.center.truncate(), corners: b.obox.footprint(), knees: None }
+        let (center, corners) = (b.obox.center.truncate(), b.obox.footprint());
+        Footprint { mask, area, support, center, corners, knees: None, action: b.action }
     }
 }
 
@@ -510,7 +513,8 @@ fn guide_item(
     let dim = model.token_dim();
     let mut decoded = decode_slots(tokens, masks.window.center, ceiling, bounds, model);
     if let Some(share) = cfg.fold_anchored {
-        fold_anchored(&mut decoded, tokens, anchored, share, dim);
+        let actions: Vec<Action> = masks.contacts.iter().map(|f| f.action).collect();
+        fold_anchored(&mut decoded, tokens, &actions[..anchored.min(actions.len())], share, dim);
     }
     let objects: Vec<GuidedObject> = decoded.iter().map(|(_, o)| GuidedObject::of(o)).collect();
     let anchors: Vec<Vec<usize>> =
@@ -542,27 +546,46 @@ fn guide_item(
     j
 }
 
-/// Folds pieces in anchored slots (`slot < anchored`) that overlap by more than `share` of the
-/// smaller one's volume into one: the one with the larger footprint (the earlier on a tie) keeps
-/// its place, and its whole token (classes too) is written into the other's slots, which join its
-/// list of copies.
-fn fold_anchored(decoded: &mut Vec<(Vec<usize>, Object)>, tokens: &mut [f32], anchored: usize, share: f64, dim: usize) {
+/// Folds pieces in anchored slots (`slot < actions.len()`, `actions[s]` what slot s's person does)
+/// that overlap by more than `share` of the smaller one's volume into one: the one with the larger
+/// footprint (the earlier on a tie) keeps its place, and its whole token (classes too) is written
+/// into the other's slots, which join its list of copies. A pair folds only where the kept piece
+/// affords what the other's people do: two sitters' sofa and armchair fold into the sofa, a
+/// diner's chair never into the table a hand rests on.
+fn fold_anchored(
+    decoded: &mut Vec<(Vec<usize>, Object)>,
+    tokens: &mut [f32],
+    actions: &[Action],
+    share: f64,
+    dim: usize,
+) {
+    let anchored = actions.len();
     let is_anchored = |slots: &[usize]| slots.iter().any(|&s| s < anchored);
     let footprint = |o: &Object| o.size[0] * o.size[1];
+    let kept_and_dropped = |decoded: &[(Vec<usize>, Object)], i: usize, j: usize| {
+        if footprint(&decoded[j].1) > footprint(&decoded[i].1) { (j, i) } else { (i, j) }
+    };
+    let serves = |decoded: &[(Vec<usize>, Object)], keep: usize, drop: usize| {
+        decoded[drop].0.iter().filter(|&&s| s < anchored).all(|&s| decoded[keep].1.category.affords(actions[s]))
+    };
     let mut i = 0;
     while i < decoded.len() {
         let partner = is_anchored(&decoded[i].0)
             .then(|| {
                 let first = decoded[i].1.obox();
-                (i + 1..decoded.len())
-                    .find(|&j| is_anchored(&decoded[j].0) && Overlap::Smaller.of(&first, &decoded[j].1.obox()) > share)
+                (i + 1..decoded.len()).find(|&j| {
+                    let (keep, drop) = kept_and_dropped(decoded, i, j);
+                    is_anchored(&decoded[j].0)
+                        && Overlap::Smaller.of(&first, &decoded[j].1.obox()) > share
+                        && serves(decoded, keep, drop)
+                })
             })
             .flatten();
         let Some(j) = partner else {
             i += 1;
             continue;
         };
-        let (keep, drop) = if footprint(&decoded[j].1) > footprint(&decoded[i].1) { (j, i) } else { (i, j) };
+        let (keep, drop) = kept_and_dropped(decoded, i, j);
         let source = decoded[keep].0[0];
         let token: Vec<f32> = tokens[source * dim..(source + 1) * dim].to_vec();
         let (slots, _) = decoded.remove(drop);
@@ -1127,7 +1150,7 @@ mod batch_tests {
         ];
         let dim = 3;
         let mut tokens: Vec<f32> = (0..4 * dim).map(|v| v as f32).collect();
-        fold_anchored(&mut decoded, &mut tokens, 3, 0.25, dim);
+        fold_anchored(&mut decoded, &mut tokens, &[Action::Sit; 3], 0.25, dim);
         let kept: Vec<(Vec<usize>, Category)> = decoded.iter().map(|(s, o)| (s.clone(), o.category)).collect();
         assert_eq!(kept, vec![(vec![1, 0], LoveseatSofa), (vec![2], Armchair), (vec![3], Stool)]);
         assert_eq!(tokens[..dim], tokens[dim..2 * dim], "slot 0 holds the loveseat's whole token");
@@ -1136,8 +1159,29 @@ mod batch_tests {
         // Overlapping by less than the share (0.1 m of the armchair's 0.8): nothing folds.
         let mut apart = vec![(vec![0], piece(Armchair, -0.5, 0.8)), (vec![1], piece(LoveseatSofa, 0.6, 1.6))];
         let before = apart.clone();
-        fold_anchored(&mut apart, &mut tokens, 2, 0.25, dim);
+        fold_anchored(&mut apart, &mut tokens, &[Action::Sit; 2], 0.25, dim);
         assert_eq!(apart, before);
+    }
+
+    #[test]
+    fn a_diner_s_chair_never_folds_into_the_table_a_hand_rests_on() {
+        use Category::*;
+        // Slot 0 a diner's chair half under a 1.6 × 0.9 m table in slot 1, which a hand touches.
+        let mut decoded = vec![
+            (vec![0], Object::standing("o", DiningChair, [0.7, 0.0], [0.5, 0.5, 0.9])),
+            (vec![1], Object::standing("o", DiningTable, [0.0, 0.0], [1.6, 0.9, 0.75])),
+        ];
+        let dim = 3;
+        let mut tokens: Vec<f32> = (0..2 * dim).map(|v| v as f32).collect();
+        let (before, tokens_before) = (decoded.clone(), tokens.clone());
+        fold_anchored(&mut decoded, &mut tokens, &[Action::Sit, Action::Touch], 0.25, dim);
+        assert_eq!((decoded, tokens), (before.clone(), tokens_before.clone()), "a table seats no one");
+        // The same two pieces under two hands fold into the table, which both may touch.
+        let mut decoded = before;
+        let mut tokens = tokens_before;
+        fold_anchored(&mut decoded, &mut tokens, &[Action::Touch, Action::Touch], 0.25, dim);
+        assert_eq!(decoded.len(), 1);
+        assert_eq!((decoded[0].0.clone(), decoded[0].1.category), (vec![1, 0], DiningTable));
     }
 
     #[test]

@@ -7,6 +7,7 @@
 //! Guidance terms themselves, physics and metrics live elsewhere.
 
 mod adamw;
+pub mod affordance_projection;
 pub mod against_walls;
 pub mod anchors;
 pub mod at_table;

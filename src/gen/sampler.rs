@@ -9,6 +9,7 @@
 //! as [`FastDenoiser`] (conditions encoded once, no item's numbers depending on another's), so item i of a seed is the
 //! same whether it is sampled alone or in a batch.
 
+use super::affordance_projection::keep_affordances;
 use super::count_projection::{CountTargets, match_counts};
 use super::model::CondTensors;
 use super::tokens::{CLASS_OFFSET, slot_class};
@@ -35,12 +36,15 @@ pub struct Projection {
     /// In the same steps, x̂0's classes are first matched to each item's pieces per category as
     /// its rule says ([`match_counts`]). `None`: no count projection.
     pub counts: Option<CountTargets>,
+    /// In the same steps, before the counts, each anchored slot holds a piece that affords its
+    /// box's action ([`keep_affordances`]).
+    pub affordances: bool,
 }
 
 impl Projection {
     /// The empty-slot projection alone, in the steps below `steps`.
     pub fn empty_slots(steps: usize) -> Projection {
-        Projection { steps, counts: None }
+        Projection { steps, counts: None, affordances: false }
     }
 }
 
@@ -170,6 +174,14 @@ pub fn sample_from(
             out.iter().zip(&noisy).map(|(&o, &x)| prediction.clean_estimate(o, x, ab).clamp(-1.0, 1.0)).collect();
         let x0 = Tensor::from_vec(x0, shape, &Device::Cpu)?;
         let x0 = if t < projection.steps {
+            let x0 = match projection.affordances {
+                true => {
+                    let mut v = x0.flatten_all()?.to_vec1::<f32>()?;
+                    keep_affordances(&mut v, &contacts, &mask, cfg);
+                    Tensor::from_vec(v, shape, &Device::Cpu)?
+                }
+                false => x0,
+            };
             let x0 = match &projection.counts {
                 Some(targets) => match_batch_counts(&x0, &frame(&x0, false)?, targets, &mask, cfg)?,
                 None => x0,
