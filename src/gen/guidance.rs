@@ -443,8 +443,8 @@ pub struct SpatialGuidance {
     bounds: Bounds,
     masks: Vec<SceneMasks>,
     ceilings: Vec<f64>,
-    /// Per item: how many of its first slots are anchored to contact boxes.
-    anchored: Vec<usize>,
+    /// Per item: what the person of each of its first slots, those anchored to contact boxes, does.
+    anchored: Vec<Vec<Action>>,
     /// Guide at the model's steps t < this: `cfg.until_step` as a noise level.
     until: usize,
     /// Weighted J summed over the batch at each guided step (for inspection and tests).
@@ -460,7 +460,10 @@ impl SpatialGuidance {
             cfg,
             model: model.clone(),
             bounds: bounds.clone(),
-            anchored: masks.iter().map(|m| model.anchored_slots(m.contacts.len())).collect(),
+            anchored: masks
+                .iter()
+                .map(|m| m.contacts.iter().take(model.anchored_slots(m.contacts.len())).map(|f| f.action).collect())
+                .collect(),
             until,
             masks,
             ceilings: scenes.iter().map(|s| s.floor_plan.height).collect(),
@@ -482,7 +485,7 @@ impl Guidance for SpatialGuidance {
         let total: f64 = v
             .par_chunks_exact_mut(per_item)
             .zip(self.masks.par_iter().zip(&self.ceilings).zip(&self.anchored))
-            .map(|(tokens, ((masks, &ceiling), &anchored))| {
+            .map(|(tokens, ((masks, &ceiling), anchored))| {
                 let mut first = None;
                 for _ in 0..cfg.iterations.max(1) {
                     let j = guide_item(tokens, masks, ceiling, anchored, model, bounds, cfg);
@@ -500,12 +503,13 @@ impl Guidance for SpatialGuidance {
     }
 }
 
-/// One gradient step on one item's tokens (world form); returns J before the step.
+/// One gradient step on one item's tokens (world form), `anchored` what the person of each of its
+/// anchored slots does; returns J before the step.
 fn guide_item(
     tokens: &mut [f32],
     masks: &SceneMasks,
     ceiling: f64,
-    anchored: usize,
+    anchored: &[Action],
     model: &ModelConfig,
     bounds: &Bounds,
     cfg: &GuidanceConfig,
@@ -513,9 +517,9 @@ fn guide_item(
     let dim = model.token_dim();
     let mut decoded = decode_slots(tokens, masks.window.center, ceiling, bounds, model);
     if let Some(share) = cfg.fold_anchored {
-        let actions: Vec<Action> = masks.contacts.iter().map(|f| f.action).collect();
-        fold_anchored(&mut decoded, tokens, &actions[..anchored.min(actions.len())], share, dim);
+        fold_anchored(&mut decoded, tokens, anchored, share, dim);
     }
+    let anchored = anchored.len();
     let objects: Vec<GuidedObject> = decoded.iter().map(|(_, o)| GuidedObject::of(o)).collect();
     let anchors: Vec<Vec<usize>> =
         decoded.iter().map(|(slots, _)| slots.iter().copied().filter(|&s| s < anchored).collect()).collect();
@@ -574,10 +578,10 @@ fn fold_anchored(
             .then(|| {
                 let first = decoded[i].1.obox();
                 (i + 1..decoded.len()).find(|&j| {
-                    let (keep, drop) = kept_and_dropped(decoded, i, j);
-                    is_anchored(&decoded[j].0)
-                        && Overlap::Smaller.of(&first, &decoded[j].1.obox()) > share
-                        && serves(decoded, keep, drop)
+                    is_anchored(&decoded[j].0) && Overlap::Smaller.of(&first, &decoded[j].1.obox()) > share && {
+                        let (keep, drop) = kept_and_dropped(decoded, i, j);
+                        serves(decoded, keep, drop)
+                    }
                 })
             })
             .flatten();
